@@ -1,0 +1,96 @@
+// Demonstration trajectories on HDF5, in the layout Minari uses so h5py users read plain arrays.
+//
+// File layout (format "vaegail-demos", version 1):
+//   /                       attrs: format, format_version, env_id, control_timestep,
+//                                  observation_names, action_names, feature_names,
+//                                  context_names (JSON lists as UTF-8 strings),
+//                                  total_episodes, total_steps
+//   /episode_{i}/observations   float32 [T+1, obs_dim]
+//   /episode_{i}/actions        float32 [T, act_dim]
+//   /episode_{i}/rewards        float64 [T]
+//   /episode_{i}/terminations   bool    [T]  (h5py's enum of int8 FALSE/TRUE)
+//   /episode_{i}/truncations    bool    [T]
+//   /episode_{i}/features/{name} float64 [T+1]  one per feature, aligned with observations
+//   /episode_{i}            attrs: id, total_steps, expert_id, context (float64 [k]), seed,
+//                                  plus any extra float64 scalars (achieved_speed, held_out...)
+// Datasets are chunked, shuffled and deflated.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vaegail {
+
+constexpr int kDemoFormatVersion = 1;
+
+// Every reading or validation problem: one line naming the file, the episode and the field.
+class DataError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct DemoHeader {
+  std::string env_id;
+  double control_timestep = 0.0;
+  std::vector<std::string> observation_names, action_names, feature_names, context_names;
+  int obs_dim() const { return static_cast<int>(observation_names.size()); }
+  int act_dim() const { return static_cast<int>(action_names.size()); }
+};
+
+struct Episode {
+  std::vector<float> observations;          // [T+1, obs_dim]
+  std::vector<float> actions;               // [T, act_dim]
+  std::vector<double> rewards;              // [T]
+  std::vector<std::uint8_t> terminations;   // [T], 0/1
+  std::vector<std::uint8_t> truncations;    // [T], 0/1
+  std::vector<double> features;             // [T+1, n_features], row-major
+  std::string expert_id;
+  std::vector<double> context;              // [n_context]
+  std::uint64_t seed = 0;
+  std::map<std::string, double> attributes; // extra per-episode scalars
+  int length() const { return static_cast<int>(rewards.size()); }
+  // Mean over steps 1..T of feature column f (the state each action led to).
+  double mean_feature(int f, int n_features) const;
+};
+
+struct DemoSet {
+  std::string path;
+  DemoHeader header;
+  std::vector<Episode> episodes;
+};
+
+// Writes to a temporary file beside `path`; commit() renames it into place. Destroying an
+// uncommitted writer (an exception, a kill) removes the temporary file and leaves `path` as it was.
+class DemoWriter {
+ public:
+  DemoWriter(std::string path, DemoHeader header);
+  ~DemoWriter();
+  DemoWriter(const DemoWriter&) = delete;
+  DemoWriter& operator=(const DemoWriter&) = delete;
+
+  // Throws DataError if the episode does not match the header or holds NaN/Inf.
+  void append(const Episode& episode);
+  void commit();
+  int episodes_written() const { return episodes_; }
+
+ private:
+  void close_file();
+
+  std::string path_, tmp_path_;
+  DemoHeader header_;
+  std::int64_t file_ = -1;
+  int episodes_ = 0;
+  std::int64_t steps_ = 0;
+  bool committed_ = false;
+};
+
+// Checks an episode against a header; throws DataError "where: field: problem".
+void validate_episode(const Episode& episode, const DemoHeader& header, const std::string& where);
+
+// Reads and validates a whole file. Throws DataError on anything missing or malformed.
+DemoSet read_demos(const std::string& path);
+
+}  // namespace vaegail

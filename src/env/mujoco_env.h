@@ -1,0 +1,69 @@
+// The MuJoCo side of every environment: a model, its mjData, frame skipping, seeded resets,
+// action clipping and the time limit. Tasks (walker, arm, humanoid) override the hooks;
+// MujocoEnv itself serves any MJCF file a user brings (observation qpos and qvel, zero
+// reward, feature com_speed_x).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "env/env.h"
+#include "env/mujoco_model.h"
+#include "util/rng.h"
+
+namespace vaegail {
+
+struct MujocoEnvOptions {
+  std::string id = "mjcf";
+  int frame_skip = 1;          // physics steps per control step
+  int episode_length = 1000;   // control steps
+  double reset_noise = 0.01;   // uniform +- on qpos and qvel of non-free joints at reset
+};
+
+class MujocoEnv : public Env {
+ public:
+  MujocoEnv(std::shared_ptr<const MujocoModel> model, MujocoEnvOptions options);
+
+  const std::string& id() const override { return options_.id; }
+  const BoxSpec& observation_spec() const override { return obs_spec_; }
+  const BoxSpec& action_spec() const override { return act_spec_; }
+  const std::vector<std::string>& feature_names() const override { return feature_names_; }
+  const std::vector<std::string>& context_names() const override { return context_names_; }
+  double control_timestep() const override;
+  int episode_length() const override { return options_.episode_length; }
+  void set_context(const std::vector<double>& context) override;
+  const std::vector<double>& context() const override { return context_; }
+  void reset(std::uint64_t seed) override;
+  StepOutcome step(const float* action) override;
+  void observe(float* out) const override;
+  void features(double* out) const override;
+  int steps_taken() const override { return steps_; }
+  std::unique_ptr<Env> clone() const override;
+
+  const mjModel* model() const { return model_->get(); }
+  const mjData* data() const { return data_.get(); }
+  // Centre-of-mass velocity of the subtree rooted at `body` (world frame, m/s).
+  void subtree_velocity(int body, double out[3]) const;
+
+ protected:
+  // Hooks for tasks. Defaults describe the generic MJCF environment.
+  virtual void initialize_episode(Rng& rng);
+  virtual double reward(const float* action) const;
+  virtual bool has_terminated() const { return false; }
+
+  mjData* mutable_data() { return data_.get(); }
+
+  // Tasks set their layouts in their constructors.
+  BoxSpec obs_spec_, act_spec_;
+  std::vector<std::string> feature_names_, context_names_;
+  std::vector<double> context_;
+  std::shared_ptr<const MujocoModel> model_;
+  MujocoEnvOptions options_;
+
+ private:
+  MjDataPtr data_;
+  int steps_ = 0;
+};
+
+}  // namespace vaegail

@@ -1,0 +1,71 @@
+#include "env/mujoco_env.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "env/embedded_models.h"
+#include "env/registry.h"
+
+namespace vaegail {
+namespace {
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+const char* kPendulum = R"(<mujoco>
+  <worldbody>
+    <body name="pole">
+      <joint name="hinge" type="hinge" axis="0 1 0"/>
+      <geom type="capsule" fromto="0 0 0 0 0 -1" size="0.05"/>
+    </body>
+  </worldbody>
+  <actuator><motor name="torque" joint="hinge" ctrllimited="true" ctrlrange="-2 2"/></actuator>
+</mujoco>)";
+
+TEST(MujocoEnv, AnyMjcfFileLoadsThroughTheSameWrapper) {
+  EnvRequest request;
+  request.task = write_temp("vaegail_pendulum.xml", kPendulum);
+  request.frame_skip = 5;
+  request.episode_length = 10;
+  auto env = make_env(request);
+  EXPECT_EQ(env->obs_dim(), 2);
+  EXPECT_EQ(env->observation_spec().names[0], "qpos:hinge");
+  EXPECT_EQ(env->observation_spec().names[1], "qvel:hinge");
+  EXPECT_EQ(env->action_spec().names[0], "torque");
+  EXPECT_DOUBLE_EQ(env->action_spec().high[0], 2.0);
+  EXPECT_DOUBLE_EQ(env->control_timestep(), 0.002 * 5);
+  env->reset(1);
+  const float push = 2.f;
+  StepOutcome out;
+  for (int t = 0; t < 10; ++t) out = env->step(&push);
+  EXPECT_TRUE(out.truncated);
+  EXPECT_GT(env->observation()[1], 0.05f);  // 2 Nm on ~2.6 kg m^2 for 0.1 s: ~0.077 rad/s
+}
+
+TEST(MujocoEnv, MissingOrBrokenModelsNameTheFile) {
+  EnvRequest request;
+  request.task = "/nonexistent/body.xml";
+  try {
+    make_env(request);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/body.xml"), std::string::npos);
+  }
+  request.task = write_temp("vaegail_broken.xml", "<mujoco><worldbody><body>");
+  EXPECT_THROW(make_env(request), std::runtime_error);
+  request.task = "no_such_task";
+  EXPECT_THROW(make_env(request), std::invalid_argument);
+}
+
+TEST(MujocoEnv, WalkerModelIsEmbedded) {
+  EXPECT_NE(embedded_model("walker.xml").find("vaegail_walker"), std::string::npos);
+  EXPECT_THROW(embedded_model("nothing.xml"), std::out_of_range);
+}
+
+}  // namespace
+}  // namespace vaegail

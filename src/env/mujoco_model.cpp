@@ -1,0 +1,38 @@
+#include "env/mujoco_model.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace vaegail {
+
+std::shared_ptr<const MujocoModel> MujocoModel::from_file(const std::string& path) {
+  char error[1000] = "";
+  mjModel* model = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
+  if (!model) throw std::runtime_error(path + ": cannot load MJCF model: " + error);
+  return std::shared_ptr<const MujocoModel>(new MujocoModel(model, path));
+}
+
+std::shared_ptr<const MujocoModel> MujocoModel::from_xml(const std::string& name,
+                                                         const std::string& xml) {
+  // mjVFS holds thousands of file slots: keep it off the stack.
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), name.c_str(), static_cast<int>(xml.size())) != 0)
+    throw std::runtime_error(name + ": cannot stage embedded model");
+  std::copy(xml.begin(), xml.end(), static_cast<char*>(vfs->filedata[vfs->nfile - 1]));
+  char error[1000] = "";
+  mjModel* model = mj_loadXML(name.c_str(), vfs.get(), error, sizeof error);
+  mj_deleteVFS(vfs.get());
+  if (!model) throw std::runtime_error(name + ": cannot load MJCF model: " + error);
+  return std::shared_ptr<const MujocoModel>(new MujocoModel(model, name));
+}
+
+MujocoModel::~MujocoModel() { mj_deleteModel(model_); }
+
+int MujocoModel::id(mjtObj type, const std::string& name) const {
+  const int i = mj_name2id(model_, type, name.c_str());
+  if (i < 0) throw std::runtime_error(source_ + ": model has no object named '" + name + "'");
+  return i;
+}
+
+}  // namespace vaegail

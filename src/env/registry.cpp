@@ -1,0 +1,37 @@
+#include "env/registry.h"
+
+#include <stdexcept>
+
+#include "env/mujoco_env.h"
+#include "env/walker.h"
+
+namespace vaegail {
+
+namespace {
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+}  // namespace
+
+std::vector<std::string> builtin_tasks() { return {"walker"}; }
+
+std::unique_ptr<Env> make_env(const EnvRequest& request) {
+  if (request.task == "walker") {
+    WalkerOptions o;
+    o.terminate_on_fall = request.terminate_on_fall;
+    if (request.episode_length > 0) o.episode_length = request.episode_length;
+    return std::make_unique<WalkerEnv>(o);
+  }
+  if (ends_with(request.task, ".xml")) {
+    MujocoEnvOptions o;
+    o.frame_skip = request.frame_skip;
+    if (request.episode_length > 0) o.episode_length = request.episode_length;
+    return std::make_unique<MujocoEnv>(MujocoModel::from_file(request.task), o);
+  }
+  std::string known;
+  for (const auto& t : builtin_tasks()) known += (known.empty() ? "" : ", ") + t;
+  throw std::invalid_argument("unknown task '" + request.task + "' (built in: " + known +
+                              "; or the path of an MJCF .xml file)");
+}
+
+}  // namespace vaegail

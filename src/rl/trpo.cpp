@@ -1,0 +1,131 @@
+#include "rl/trpo.h"
+
+#include <cmath>
+
+namespace vaegail {
+
+namespace {
+
+torch::Tensor flatten(const std::vector<torch::Tensor>& tensors) {
+  std::vector<torch::Tensor> flat;
+  for (const auto& t : tensors) flat.push_back(t.reshape({-1}));
+  return torch::cat(flat);
+}
+
+// Gradient of a scalar as one flat vector; parameters it does not depend on get zeros.
+torch::Tensor flat_grad(const torch::Tensor& scalar, const std::vector<torch::Tensor>& params, bool create_graph) {
+  auto grads = torch::autograd::grad({scalar}, params, {}, /*retain_graph=*/true, create_graph, /*allow_unused=*/true);
+  for (size_t i = 0; i < grads.size(); ++i)
+    if (!grads[i].defined()) grads[i] = torch::zeros_like(params[i]);
+  return flatten(grads);
+}
+
+void assign(const std::vector<torch::Tensor>& params, const torch::Tensor& flat) {
+  torch::NoGradGuard no_grad;
+  int64_t offset = 0;
+  for (const auto& p : params) {
+    p.copy_(flat.slice(0, offset, offset + p.numel()).view_as(p));
+    offset += p.numel();
+  }
+}
+
+torch::Tensor surrogate(StochasticPolicy& policy, const UpdateBatch& batch, double entropy_coef) {
+  const auto dist = policy.distribution(batch.inputs);
+  const auto ratio = torch::exp(dist.log_prob(batch.actions) - batch.old_log_probs);
+  return (ratio * batch.advantages).mean() + entropy_coef * dist.entropy().mean();
+}
+
+}  // namespace
+
+LinearOperator fisher_vector_product(StochasticPolicy& policy, const torch::Tensor& inputs, double damping) {
+  const auto params = policy.trainable_parameters();
+  const auto dist = policy.distribution(inputs);
+  const auto kl = kl_divergence(dist.detached(), dist).mean();
+  // First backward pass once, with its graph kept; each product is a second pass through it.
+  const auto kl_grad = flat_grad(kl, params, /*create_graph=*/true);
+  return [params, kl_grad, damping](const torch::Tensor& v) {
+    return flat_grad((kl_grad * v).sum(), params, /*create_graph=*/false) + damping * v;
+  };
+}
+
+torch::Tensor conjugate_gradient(const LinearOperator& A, const torch::Tensor& b, int iterations,
+                                 double residual_tol) {
+  auto x = torch::zeros_like(b);
+  auto r = b.clone();
+  auto p = b.clone();
+  double rr = r.dot(r).item<double>();
+  for (int i = 0; i < iterations && rr > residual_tol; ++i) {
+    const auto Ap = A(p);
+    const double alpha = rr / p.dot(Ap).item<double>();
+    x += alpha * p;
+    r -= alpha * Ap;
+    const double rr_next = r.dot(r).item<double>();
+    p = r + (rr_next / rr) * p;
+    rr = rr_next;
+  }
+  return x;
+}
+
+Trpo::Trpo(std::shared_ptr<StochasticPolicy> policy, std::shared_ptr<Critic> critic, TrpoOptions options)
+    : policy_(std::move(policy)),
+      critic_(std::move(critic)),
+      options_(options),
+      critic_optimizer_(critic_->parameters(), torch::optim::AdamOptions(options.critic_learning_rate)),
+      generator_(at::detail::createCPUGenerator(options.seed)) {}
+
+TrpoStats Trpo::update(const UpdateBatch& batch) {
+  TrpoStats stats;
+  step_policy(batch, stats);
+  fit_critic(batch, stats);
+  return stats;
+}
+
+void Trpo::step_policy(const UpdateBatch& batch, TrpoStats& stats) {
+  const auto params = policy_->trainable_parameters();
+  const auto old_params = flatten(params).detach();
+  const auto old_dist = policy_->distribution(batch.inputs).detached();
+  const auto surrogate_before = surrogate(*policy_, batch, options_.entropy_coef);
+  const auto gradient = flat_grad(surrogate_before, params, /*create_graph=*/false);
+
+  const auto fisher = fisher_vector_product(*policy_, batch.inputs, options_.cg_damping);
+  const auto direction = conjugate_gradient(fisher, gradient, options_.cg_iterations);
+  const double curvature = direction.dot(fisher(direction)).item<double>();
+  if (std::isfinite(curvature) && curvature > 0) {
+    // The quadratic model ½·sᵀFs of the KL reaches max_kl at this length.
+    const auto full_step = direction * std::sqrt(2.0 * options_.max_kl / curvature);
+    stats.expected_improvement = gradient.dot(full_step).item<double>();
+    torch::NoGradGuard no_grad;
+    const double before = surrogate_before.item<double>();
+    double fraction = 1.0;
+    for (int k = 0; k < options_.line_search_steps && !stats.accepted; ++k, fraction *= options_.backtrack_ratio) {
+      assign(params, old_params + fraction * full_step);
+      const double improvement = surrogate(*policy_, batch, options_.entropy_coef).item<double>() - before;
+      const double kl = kl_divergence(old_dist, policy_->distribution(batch.inputs)).mean().item<double>();
+      if (std::isfinite(improvement) && improvement > 0 && kl <= options_.max_kl) {
+        stats = TrpoStats{improvement, stats.expected_improvement, kl, 0.0, k, true};
+      }
+    }
+  }
+  torch::NoGradGuard no_grad;
+  if (!stats.accepted) assign(params, old_params);
+  stats.entropy = policy_->distribution(batch.inputs).entropy().mean().item<double>();
+}
+
+void Trpo::fit_critic(const UpdateBatch& batch, TrpoStats& stats) {
+  const auto loss = [&](const UpdateBatch& b) { return (critic_->forward(b.inputs) - b.returns).pow(2).mean(); };
+  {
+    torch::NoGradGuard no_grad;
+    stats.value_loss_before = loss(batch).item<double>();
+  }
+  for (int epoch = 0; epoch < options_.critic_epochs; ++epoch) {
+    for (const auto& minibatch : batch.minibatches(options_.critic_minibatches, generator_)) {
+      critic_optimizer_.zero_grad();
+      loss(minibatch).backward();
+      critic_optimizer_.step();
+    }
+  }
+  torch::NoGradGuard no_grad;
+  stats.value_loss_after = loss(batch).item<double>();
+}
+
+}  // namespace vaegail

@@ -1,0 +1,24 @@
+// Metrics as CSV: a header of column names, then one row per call. Reopening an existing log
+// with the same columns appends (a resumed run continues its curve); different columns throw.
+#pragma once
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace vaegail {
+
+class CsvLog {
+ public:
+  CsvLog(const std::string& path, std::vector<std::string> columns);
+  // One value per column, in order; flushed at once so a killed run keeps its rows.
+  void write(const std::vector<double>& values);
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::vector<std::string> columns_;
+  std::ofstream out_;
+};
+
+}  // namespace vaegail

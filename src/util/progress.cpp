@@ -1,0 +1,70 @@
+#include "util/progress.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace vaegail {
+
+namespace {
+double seconds_between(std::chrono::steady_clock::time_point a,
+                       std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+}  // namespace
+
+Progress::Progress(std::string label, std::int64_t total, std::string unit)
+    : label_(std::move(label)), unit_(std::move(unit)), total_(total),
+      start_(std::chrono::steady_clock::now()), last_draw_(start_), tty_(isatty(STDERR_FILENO)) {}
+
+Progress::~Progress() { finish(); }
+
+void Progress::advance(std::int64_t n) { set(done_ + n); }
+
+void Progress::set(std::int64_t done) {
+  if (start_done_ < 0) start_done_ = done_;  // a resumed job's rate counts only new work
+  done_ = done;
+  const auto now = std::chrono::steady_clock::now();
+  const double since = seconds_between(last_draw_, now);
+  if ((tty_ && since >= 0.1) || (!tty_ && since >= 10.0)) draw(false);
+}
+
+void Progress::set_status(std::string status) { status_ = std::move(status); }
+
+void Progress::finish() {
+  if (finished_) return;
+  finished_ = true;
+  draw(true);
+}
+
+std::string Progress::format_duration(double seconds) {
+  if (!(seconds >= 0) || seconds > 1e7) return "--:--";
+  const long s = static_cast<long>(seconds + 0.5);
+  char buf[32];
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%02ld:%02ld", s / 60, s % 60);
+  return buf;
+}
+
+void Progress::draw(bool final) {
+  const auto now = std::chrono::steady_clock::now();
+  last_draw_ = now;
+  const double elapsed = seconds_between(start_, now);
+  const double rate = elapsed > 0 ? (done_ - (start_done_ < 0 ? 0 : start_done_)) / elapsed : 0;
+  const double eta = rate > 0 ? (total_ - done_) / rate : -1;
+  const double frac = total_ > 0 ? static_cast<double>(done_) / total_ : 0;
+  const int width = 24;
+  std::string bar(width, ' ');
+  for (int i = 0; i < static_cast<int>(frac * width + 1e-9) && i < width; ++i) bar[i] = '#';
+  std::fprintf(stderr, "%s%s [%s] %lld/%lld %3.0f%% %.1f %s/s elapsed %s eta %s%s%s%s",
+               tty_ ? "\r\033[K" : "", label_.c_str(), bar.c_str(),
+               static_cast<long long>(done_), static_cast<long long>(total_), 100 * frac, rate,
+               unit_.c_str(), format_duration(elapsed).c_str(),
+               final ? "00:00" : format_duration(eta).c_str(), status_.empty() ? "" : "  ",
+               status_.c_str(), (final || !tty_) ? "\n" : "");
+  std::fflush(stderr);
+}
+
+}  // namespace vaegail

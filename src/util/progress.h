@@ -1,0 +1,35 @@
+// A progress bar for long jobs: done/total, rate, ETA and any extra status, on stderr.
+// On a terminal it redraws one line; otherwise (CI, logs) it prints a line every ~10 s.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace vaegail {
+
+class Progress {
+ public:
+  Progress(std::string label, std::int64_t total, std::string unit = "it");
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  void advance(std::int64_t n = 1);
+  void set(std::int64_t done);
+  // Short text shown after the rate, e.g. "loss 1.23".
+  void set_status(std::string status);
+  void finish();
+
+  static std::string format_duration(double seconds);
+
+ private:
+  void draw(bool final);
+
+  std::string label_, unit_, status_;
+  std::int64_t total_, done_ = 0, start_done_ = -1;
+  std::chrono::steady_clock::time_point start_, last_draw_;
+  bool tty_, finished_ = false;
+};
+
+}  // namespace vaegail
