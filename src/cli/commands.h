@@ -1,0 +1,18 @@
+// Each stage registers its subcommands on the `vaegail` app. A command's callback throws on
+// bad input; main() turns that into one line on stderr and a non-zero exit.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace vaegail::cli {
+
+void add_env_commands(CLI::App& app);
+void add_data_commands(CLI::App& app);
+void add_bench_commands(CLI::App& app);
+void add_quickstart_command(CLI::App& app);
+
+struct TaskOptions;
+// Flags every command that simulates shares: which task, and how episodes end.
+void add_task_options(CLI::App& command, TaskOptions& options);
+
+}  // namespace vaegail::cli

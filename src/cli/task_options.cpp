@@ -1,0 +1,27 @@
+#include "cli/task_options.h"
+
+#include "cli/commands.h"
+
+namespace vaegail::cli {
+
+EnvRequest TaskOptions::request() const {
+  EnvRequest r;
+  r.task = task;
+  r.episode_length = episode_length;
+  r.frame_skip = frame_skip;
+  r.terminate_on_fall = !keep_going_after_fall;
+  return r;
+}
+
+void add_task_options(CLI::App& command, TaskOptions& o) {
+  command.add_option("--task", o.task, "built-in task (walker) or the path of an MJCF .xml file")
+      ->capture_default_str();
+  command.add_option("--episode-length", o.episode_length, "control steps per episode (0: the task's default)")
+      ->check(CLI::Range(0, 1 << 30));
+  command.add_option("--frame-skip", o.frame_skip, "MJCF files: physics steps per control step")
+      ->check(CLI::Range(1, 1 << 30))->capture_default_str();
+  command.add_flag("--no-fall-termination", o.keep_going_after_fall,
+                   "do not end episodes when the body falls");
+}
+
+}  // namespace vaegail::cli

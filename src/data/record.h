@@ -1,0 +1,43 @@
+// Rolls a policy out in an environment and records the episodes in the demonstration format.
+// Episodes run on a pool of environment copies; the policy sees a batch of the environments
+// still running at each step.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "data/demos.h"
+#include "env/env.h"
+
+namespace vaegail {
+
+class Progress;
+
+// Fills actions [n, act_dim] for observations [n, obs_dim]; episodes[i] says which requested
+// episode row i belongs to, and steps[i] how many steps that episode has taken.
+using BatchPolicy = std::function<void(int n, const float* observations, const int* episodes,
+                                       const int* steps, float* actions)>;
+
+struct RecordRequest {
+  std::vector<std::uint64_t> seeds;             // one per episode: its reset seed
+  std::vector<std::vector<double>> contexts;    // one per episode, or empty for the env's own
+  std::string expert_id;
+  int num_envs = 8;     // environments stepped together
+  int num_threads = 1;  // threads stepping them
+};
+
+DemoHeader header_for(const Env& env);
+
+// Episodes come back in request order, each with its seed, context and per-step features;
+// the episode's mean of every feature (over the states its actions reached) is stored as an
+// attribute "mean_<feature>".
+std::vector<Episode> record_episodes(const Env& prototype, const RecordRequest& request,
+                                     const BatchPolicy& policy, Progress* progress = nullptr);
+
+// Uniform random actions within the action bounds; each episode draws from its own stream
+// seeded by (seed, episode), so the recording does not depend on batching.
+BatchPolicy random_policy(const Env& env, std::uint64_t seed);
+BatchPolicy zero_policy(const Env& env);
+
+}  // namespace vaegail

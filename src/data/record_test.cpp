@@ -1,0 +1,51 @@
+#include "data/record.h"
+
+#include <gtest/gtest.h>
+
+#include "env/walker.h"
+
+namespace vaegail {
+namespace {
+
+RecordRequest request(int episodes, int envs, int threads) {
+  RecordRequest r;
+  for (int i = 0; i < episodes; ++i) r.seeds.push_back(500 + i);
+  for (int i = 0; i < episodes; ++i) r.contexts.push_back({i % 2 ? 1.0 : -1.0});
+  r.expert_id = "random";
+  r.num_envs = envs;
+  r.num_threads = threads;
+  return r;
+}
+
+TEST(Record, EpisodesDoNotDependOnBatchingOrThreads) {
+  WalkerEnv env;
+  const auto a = record_episodes(env, request(5, 1, 1), random_policy(env, 3));
+  const auto b = record_episodes(env, request(5, 4, 2), random_policy(env, 3));
+  ASSERT_EQ(a.size(), 5u);
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(a[i].observations, b[i].observations);
+    EXPECT_EQ(a[i].actions, b[i].actions);
+    EXPECT_EQ(a[i].features, b[i].features);
+    EXPECT_EQ(a[i].context, (std::vector<double>{i % 2 ? 1.0 : -1.0}));
+  }
+}
+
+TEST(Record, EpisodeMatchesAHandRolledEpisodeAndTheFormat) {
+  WalkerEnv env;
+  const auto episodes = record_episodes(env, request(1, 1, 1), zero_policy(env));
+  const Episode& e = episodes[0];
+  validate_episode(e, header_for(env), "recorded");
+  WalkerEnv solo;
+  solo.set_context({-1.0});
+  solo.reset(500);
+  const std::vector<float> zero(6, 0.f);
+  for (int t = 0; t < e.length(); ++t) solo.step(zero.data());
+  const auto last = solo.observation();
+  EXPECT_EQ(std::vector<float>(e.observations.end() - 18, e.observations.end()), last);
+  // A limp walker falls: the last step terminates, and the episode carries its mean speed.
+  EXPECT_TRUE(e.terminations.back());
+  EXPECT_EQ(e.attributes.count("mean_com_speed"), 1u);
+}
+
+}  // namespace
+}  // namespace vaegail
