@@ -40,7 +40,7 @@ torch::Tensor Agent::input(const torch::Tensor& observations, const torch::Tenso
   return torch::cat({obs, conditions.to(device(), torch::kFloat32)}, -1);
 }
 
-void Agent::save_checkpoint(const std::string& path) {
+void Agent::save_checkpoint(const std::string& path) const {
   torch::serialize::OutputArchive archive;
   save(archive);
   write_atomically(path, [&](const std::string& tmp) { archive.save_to(tmp); });

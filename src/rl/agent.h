@@ -52,7 +52,7 @@ class Agent : public torch::nn::Module {
   // The whole agent (parameters and normaliser statistics). save() writes a temporary file
   // and renames it, so a crash never leaves a half checkpoint; load() needs an agent of the
   // same architecture and keeps its device.
-  void save_checkpoint(const std::string& path);
+  void save_checkpoint(const std::string& path) const;
   void load_checkpoint(const std::string& path);
 
  private:

@@ -25,7 +25,6 @@ class ObsNormalizer : public torch::nn::Module {
   // A frozen normaliser ignores update(): evaluation must not shift the statistics a policy
   // was trained with.
   void set_frozen(bool frozen) { frozen_ = frozen; }
-  bool frozen() const { return frozen_; }
 
   const torch::Tensor& mean() const { return mean_; }
   const torch::Tensor& var() const { return var_; }

@@ -10,11 +10,11 @@ namespace vaegail {
 
 namespace {
 
-// A [rows, cols] tensor copied out of a row-major buffer.
+// A CPU tensor copied out of a row-major buffer; float32 whatever the buffer holds.
 template <typename T>
-torch::Tensor copy_buffer(const std::vector<T>& buffer, int rows, int cols, torch::Dtype dtype) {
-  if (buffer.empty()) return torch::zeros({rows, cols}, dtype);
-  return torch::from_blob(const_cast<T*>(buffer.data()), {rows, cols}, dtype).clone();
+torch::Tensor copy_buffer(const std::vector<T>& buffer, torch::IntArrayRef shape, torch::Dtype buffer_dtype) {
+  if (buffer.empty()) return torch::zeros(shape);
+  return torch::from_blob(const_cast<T*>(buffer.data()), shape, buffer_dtype).to(torch::kFloat32, false, true);
 }
 
 }  // namespace
@@ -63,14 +63,15 @@ void RolloutCollector::start() {
 }
 
 torch::Tensor RolloutCollector::current_observations() const {
-  return copy_buffer(obs_, envs_.size(), obs_dim_, torch::kFloat32);
+  return copy_buffer(obs_, {envs_.size(), obs_dim_}, torch::kFloat32);
 }
 
 torch::Tensor RolloutCollector::current_conditions() const {
-  return copy_buffer(conditions_, envs_.size(), cond_dim_, torch::kFloat32);
+  return copy_buffer(conditions_, {envs_.size(), cond_dim_}, torch::kFloat32);
 }
 
 Rollout RolloutCollector::collect(int steps_per_env) {
+  if (steps_per_env < 1) throw std::invalid_argument("RolloutCollector::collect: steps_per_env must be positive");
   if (!started_) start();
   torch::NoGradGuard no_grad;
   const int n = envs_.size();
@@ -95,17 +96,16 @@ Rollout RolloutCollector::collect(int steps_per_env) {
     actions.push_back(action);
     log_probs.push_back(dist.log_prob(action));
     values.push_back(critic.forward(input));
-    rewards.push_back(copy_buffer(envs_.rewards(), 1, n, torch::kFloat32)[0]);
-    const auto term = copy_buffer(envs_.terminated(), 1, n, torch::kUInt8)[0].to(torch::kFloat32);
-    const auto trunc = copy_buffer(envs_.truncated(), 1, n, torch::kUInt8)[0].to(torch::kFloat32);
-    terminated.push_back(term);
-    truncated.push_back(trunc);
-    // The finished episode's condition is still in `cond`: begin_episode below replaces it.
-    final_values.push_back(trunc.any().item<bool>()
-                               ? critic.forward(agent_->input(copy_buffer(envs_.final_observations(), n, obs_dim_,
-                                                                          torch::kFloat32),
-                                                              cond))
-                               : torch::zeros({n}, device));
+    rewards.push_back(copy_buffer(envs_.rewards(), {n}, torch::kFloat32));
+    terminated.push_back(copy_buffer(envs_.terminated(), {n}, torch::kUInt8));
+    truncated.push_back(copy_buffer(envs_.truncated(), {n}, torch::kUInt8));
+    auto final_value = torch::zeros({n}, device);
+    if (truncated.back().any().item<bool>()) {
+      // The finished episode's condition is still in `cond`: begin_episode below replaces it.
+      const auto final_obs = copy_buffer(envs_.final_observations(), {n, obs_dim_}, torch::kFloat32);
+      final_value = critic.forward(agent_->input(final_obs, cond));
+    }
+    final_values.push_back(final_value);
 
     for (int i = 0; i < n; ++i) {
       EpisodeRecord& episode = running_[i];

@@ -37,9 +37,6 @@ struct Rollout {
   torch::Tensor terminated, truncated;
   // Episodes that ended during this collection (they may have begun in an earlier one).
   std::vector<EpisodeRecord> episodes;
-
-  int steps() const { return static_cast<int>(rewards.size(0)); }
-  int num_envs() const { return static_cast<int>(rewards.size(1)); }
 };
 
 // Where the rewards that train the policy come from. Called once per collection, after all
@@ -63,8 +60,9 @@ using EpisodeStartFn = std::function<std::vector<float>(int env_index, Env& env)
 
 class RolloutCollector {
  public:
-  // The collector switches `envs` to auto-reset and owns its episodes from then on. Without
-  // a hook, the agent's condition_dim must be 0.
+  // On the first collect() the collector switches `envs` to auto-reset, calls the hook for
+  // every environment and resets them all; it owns their episodes from then on. Environment i
+  // gets seed stream i of `seed`. Without a hook, the agent's condition_dim must be 0.
   RolloutCollector(VecEnv& envs, std::shared_ptr<Agent> agent, std::uint64_t seed,
                    EpisodeStartFn on_episode_start = nullptr,
                    std::shared_ptr<RewardSource> reward_source = std::make_shared<EnvReward>());

@@ -97,12 +97,16 @@ void Trpo::step_policy(const UpdateBatch& batch, TrpoStats& stats) {
     torch::NoGradGuard no_grad;
     const double before = surrogate_before.item<double>();
     double fraction = 1.0;
-    for (int k = 0; k < options_.line_search_steps && !stats.accepted; ++k, fraction *= options_.backtrack_ratio) {
+    for (int k = 0; k < options_.line_search_steps; ++k, fraction *= options_.backtrack_ratio) {
       assign(params, old_params + fraction * full_step);
       const double improvement = surrogate(*policy_, batch, options_.entropy_coef).item<double>() - before;
       const double kl = kl_divergence(old_dist, policy_->distribution(batch.inputs)).mean().item<double>();
       if (std::isfinite(improvement) && improvement > 0 && kl <= options_.max_kl) {
-        stats = TrpoStats{improvement, stats.expected_improvement, kl, 0.0, k, true};
+        stats.accepted = true;
+        stats.surrogate_improvement = improvement;
+        stats.kl = kl;
+        stats.line_search_steps = k;
+        break;
       }
     }
   }

@@ -43,7 +43,6 @@ class Trpo {
  public:
   Trpo(std::shared_ptr<StochasticPolicy> policy, std::shared_ptr<Critic> critic, TrpoOptions options = {});
   TrpoStats update(const UpdateBatch& batch);
-  const TrpoOptions& options() const { return options_; }
 
  private:
   void step_policy(const UpdateBatch& batch, TrpoStats& stats);

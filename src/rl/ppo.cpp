@@ -1,0 +1,60 @@
+#include "rl/ppo.h"
+
+namespace vaegail {
+
+namespace {
+
+std::vector<torch::Tensor> joint_parameters(StochasticPolicy& policy, Critic& critic) {
+  auto params = policy.trainable_parameters();
+  for (const auto& p : critic.parameters()) params.push_back(p);
+  return params;
+}
+
+}  // namespace
+
+Ppo::Ppo(std::shared_ptr<StochasticPolicy> policy, std::shared_ptr<Critic> critic, PpoOptions options)
+    : policy_(std::move(policy)),
+      critic_(std::move(critic)),
+      options_(options),
+      parameters_(joint_parameters(*policy_, *critic_)),
+      optimizer_(parameters_, torch::optim::AdamOptions(options.learning_rate)),
+      generator_(at::detail::createCPUGenerator(options.seed)) {}
+
+PpoStats Ppo::update(const UpdateBatch& batch) {
+  PpoStats stats;
+  for (int epoch = 0; epoch < options_.epochs && !stats.stopped_early; ++epoch) {
+    for (const auto& mb : batch.minibatches(options_.minibatches, generator_)) {
+      const auto dist = policy_->distribution(mb.inputs);
+      const auto log_ratio = dist.log_prob(mb.actions) - mb.old_log_probs;
+      const auto ratio = torch::exp(log_ratio);
+      const auto clipped = torch::clamp(ratio, 1 - options_.clip, 1 + options_.clip);
+      const auto policy_loss = -torch::min(ratio * mb.advantages, clipped * mb.advantages).mean();
+      const auto value_loss = (critic_->forward(mb.inputs) - mb.returns).pow(2).mean();
+      const auto entropy = dist.entropy().mean();
+      const auto approx_kl = ((ratio - 1) - log_ratio).mean().item<double>();
+      if (options_.target_kl > 0 && approx_kl > 1.5 * options_.target_kl) {
+        stats.stopped_early = true;
+        break;
+      }
+
+      optimizer_.zero_grad();
+      (policy_loss + options_.value_coef * value_loss - options_.entropy_coef * entropy).backward();
+      torch::nn::utils::clip_grad_norm_(parameters_, options_.max_grad_norm);
+      optimizer_.step();
+
+      stats.policy_loss += policy_loss.item<double>();
+      stats.value_loss += value_loss.item<double>();
+      stats.entropy += entropy.item<double>();
+      stats.approx_kl += approx_kl;
+      stats.clip_fraction += ((ratio - 1).abs() > options_.clip).to(torch::kFloat32).mean().item<double>();
+      ++stats.minibatch_steps;
+    }
+  }
+  if (stats.minibatch_steps > 0) {
+    for (double* mean : {&stats.policy_loss, &stats.value_loss, &stats.entropy, &stats.approx_kl, &stats.clip_fraction})
+      *mean /= stats.minibatch_steps;
+  }
+  return stats;
+}
+
+}  // namespace vaegail
