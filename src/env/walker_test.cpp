@@ -118,14 +118,19 @@ TEST(Walker, HeightAndFallenFeaturesFollowTheTorso) {
 TEST(Walker, RewardMatchesHandComputedValues) {
   const float zero[6] = {0, 0, 0, 0, 0, 0};
   EXPECT_DOUBLE_EQ(WalkerEnv::task_reward(1.0, 1.0, 1.3, 0.0, zero, 6), 1.0);
+  // 1 m/s too fast for a 1 m/s target: linear term 1 - 1/2, sharp term exp(-2).
   EXPECT_NEAR(WalkerEnv::task_reward(2.0, 1.0, 1.3, 0.0, zero, 6),
-              0.5 * (std::exp(-0.5) + std::exp(-8.0)), 1e-12);
+              0.3 + 0.7 * 0.5 * (0.5 + std::exp(-2.0)), 1e-12);
+  // Standing still with a 3 m/s target still pays the alive weight and a quarter of the linear term.
+  EXPECT_NEAR(WalkerEnv::task_reward(0.0, 3.0, 1.3, 0.0, zero, 6),
+              0.3 + 0.7 * 0.5 * (0.25 + std::exp(-18.0)), 1e-12);
   EXPECT_NEAR(WalkerEnv::task_reward(3.0, 3.0, 1.0, 0.0, zero, 6), 0.5, 1e-12);
   EXPECT_NEAR(WalkerEnv::task_reward(0.0, 0.0, 1.3, M_PI / 2, zero, 6), 0.5, 1e-12);
   const float full[6] = {1, -1, 1, -1, 1, 5};  // clipped to 1
   EXPECT_NEAR(WalkerEnv::task_reward(0.0, 0.0, 1.3, 0.0, full, 6), 0.95, 1e-12);
-  // Closer to the target speed always pays more.
+  // Closer to the target speed always pays more, from either side.
   EXPECT_GT(WalkerEnv::task_reward(2.8, 3.0, 1.3, 0, zero, 6), WalkerEnv::task_reward(2.0, 3.0, 1.3, 0, zero, 6));
+  EXPECT_GT(WalkerEnv::task_reward(-0.8, -1.0, 1.3, 0, zero, 6), WalkerEnv::task_reward(0.0, -1.0, 1.3, 0, zero, 6));
 }
 
 TEST(Walker, SameSeedSameTrajectoryOtherSeedOtherStart) {

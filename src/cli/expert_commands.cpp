@@ -1,0 +1,206 @@
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <thread>
+
+#include "cli/commands.h"
+#include "experts/demo_collection.h"
+#include "experts/expert_eval.h"
+#include "experts/expert_trainer.h"
+#include "util/atomic_file.h"
+#include "util/progress.h"
+
+namespace vaegail::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TrainFlags {
+  std::string task = "walker";
+  std::string out_dir = "experts/walker";
+  std::string grid = "paper";
+  std::string config;
+  std::vector<std::string> only;
+  std::int64_t steps = 0;
+  int jobs = 1;
+  std::string device = "cpu";
+};
+
+void require_walker(const std::string& task) {
+  if (task != "walker") throw std::invalid_argument("experts: only --task walker is supported so far, not '" + task + "'");
+}
+
+std::vector<ExpertSpec> selected(const ExpertGrid& grid, const std::vector<std::string>& only) {
+  std::vector<ExpertSpec> specs;
+  for (const auto& s : expand(grid))
+    if (only.empty() || std::find(only.begin(), only.end(), s.id) != only.end()) specs.push_back(s);
+  if (specs.empty()) throw std::invalid_argument("no expert of the grid matches --only");
+  return specs;
+}
+
+void run_train(const TrainFlags& f) {
+  require_walker(f.task);
+  ExpertGrid grid = f.grid == "small" ? small_walker_grid() : paper_walker_grid();
+  ExpertTrainOptions options;
+  if (!f.config.empty()) {
+    const auto j = nlohmann::json::parse(read_file(f.config));
+    if (j.contains("grid")) grid = j["grid"].get<ExpertGrid>();
+    if (j.contains("training")) options = j["training"].get<ExpertTrainOptions>();
+  }
+  if (f.steps > 0) options.total_steps = f.steps;
+  options.device = f.device;
+  const auto specs = selected(grid, f.only);
+  fs::create_directories(f.out_dir);
+  std::printf("training %zu expert(s) into %s, %lld steps each, %d at a time\n", specs.size(), f.out_dir.c_str(),
+              static_cast<long long>(options.total_steps), f.jobs);
+  Progress progress("experts", static_cast<std::int64_t>(specs.size()) * options.total_steps, "steps");
+  std::mutex mutex;
+  std::vector<std::int64_t> done(specs.size(), 0);
+  size_t next = 0;
+  std::exception_ptr error;
+  auto worker = [&] {
+    for (;;) {
+      size_t i;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (next >= specs.size() || error) return;
+        i = next++;
+      }
+      try {
+        train_expert(specs[i], options, f.out_dir + "/" + specs[i].id, [&, i](std::int64_t steps) {
+          std::lock_guard<std::mutex> lock(mutex);
+          done[i] = steps;
+          std::int64_t total = 0;
+          for (auto d : done) total += d;
+          progress.set_status(specs[i].id);
+          progress.set(total);
+        });
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 0; j < f.jobs; ++j) threads.emplace_back(worker);
+  for (auto& t : threads) t.join();
+  if (error) std::rethrow_exception(error);
+  progress.finish();
+}
+
+std::vector<std::string> expert_dirs(const std::string& root, const std::vector<std::string>& only) {
+  if (!fs::is_directory(root)) throw std::runtime_error(root + ": no such directory of experts");
+  std::vector<std::string> dirs;
+  for (const auto& entry : fs::directory_iterator(root)) {
+    if (!fs::exists(entry.path() / "spec.json")) continue;
+    const std::string id = entry.path().filename().string();
+    if (only.empty() || std::find(only.begin(), only.end(), id) != only.end()) dirs.push_back(entry.path().string());
+  }
+  std::sort(dirs.begin(), dirs.end());
+  if (dirs.empty()) throw std::runtime_error(root + ": holds no expert runs" + (only.empty() ? "" : " matching --only"));
+  return dirs;
+}
+
+struct EvalFlags {
+  std::string dir = "experts/walker";
+  std::vector<std::string> only;
+  ExpertEvalOptions eval;
+  std::string json_out;
+};
+
+void run_eval(const EvalFlags& f) {
+  const auto dirs = expert_dirs(f.dir, f.only);
+  std::vector<ExpertEvaluation> results;
+  Progress progress("eval", static_cast<std::int64_t>(dirs.size()), "experts");
+  nlohmann::json report = nlohmann::json::array();
+  for (const auto& d : dirs) {
+    results.push_back(evaluate_expert(load_expert(d), f.eval));
+    nlohmann::json targets = nlohmann::json::array();
+    for (const auto& t : results.back().targets)
+      targets.push_back({{"target", t.target}, {"episodes", t.episodes}, {"mean_speed", t.mean_speed},
+                         {"speed_error", t.speed_error}, {"fall_rate", t.fall_rate}});
+    report.push_back({{"id", results.back().id}, {"passes", results.back().passes()}, {"targets", targets}});
+    progress.advance();
+  }
+  progress.finish();
+  std::fputs(format_evaluations(results).c_str(), stdout);
+  if (!f.json_out.empty()) write_file_atomically(f.json_out, report.dump(2));
+}
+
+struct CollectFlags {
+  std::string dir = "experts/walker";
+  std::vector<std::string> only;
+  std::string out;
+  std::vector<std::string> held_out;
+  std::string passing;
+  CollectOptions collect;
+  bool force = false;
+};
+
+void run_collect(CollectFlags f) {
+  if (fs::exists(f.out) && !f.force) throw std::runtime_error(f.out + ": exists (pass --force to replace it)");
+  std::vector<std::string> only = f.only;
+  if (!f.passing.empty()) {  // keep experts that passed the bar in an `experts eval --json` report
+    const auto report = nlohmann::json::parse(read_file(f.passing));
+    for (const auto& e : report)
+      if (e.at("passes").get<bool>()) only.push_back(e.at("id"));
+    if (only.empty()) throw std::runtime_error(f.passing + ": no expert passes the bar");
+  }
+  const auto dirs = expert_dirs(f.dir, only);
+  f.collect.held_out.insert(f.held_out.begin(), f.held_out.end());
+  Progress progress("collect", static_cast<std::int64_t>(dirs.size()) * f.collect.episodes_per_expert, "episodes");
+  collect_demos(dirs, f.out, f.collect, &progress);
+  progress.finish();
+  std::printf("wrote %s: %zu experts x %d episodes\n", f.out.c_str(), dirs.size(), f.collect.episodes_per_expert);
+}
+
+}  // namespace
+
+void add_expert_commands(CLI::App& app) {
+  CLI::App* experts = app.add_subcommand("experts", "train and evaluate the RL experts that demonstrate");
+  experts->require_subcommand(1);
+
+  auto t = std::make_shared<TrainFlags>();
+  CLI::App* train = experts->add_subcommand("train", "train target-speed experts with PPO (resumable)");
+  train->add_option("--task", t->task, "task (walker)")->capture_default_str();
+  train->add_option("--out-dir", t->out_dir, "one run directory per expert goes here")->capture_default_str();
+  train->add_option("--grid", t->grid, "paper: 72 experts (6 speed groups x 4 log-std x 3 seeds); small: 12")
+      ->check(CLI::IsMember({"paper", "small"}))->capture_default_str();
+  train->add_option("--config", t->config, "JSON with optional 'grid' and 'training' objects (configs/walker_experts.json)")
+      ->check(CLI::ExistingFile);
+  train->add_option("--only", t->only, "train only these expert ids");
+  train->add_option("--steps", t->steps, "environment steps per expert (overrides the config)")->check(CLI::Range(int64_t{1}, int64_t{1} << 40));
+  train->add_option("--jobs", t->jobs, "experts trained at once (one core each)")->check(CLI::Range(1, 64))->capture_default_str();
+  train->add_option("--device", t->device, "torch device (cpu, cuda)")->capture_default_str();
+  train->callback([t] { run_train(*t); });
+
+  auto e = std::make_shared<EvalFlags>();
+  CLI::App* eval = experts->add_subcommand("eval", "mean speed, distance to target and fall rate per expert and target");
+  eval->add_option("--dir", e->dir, "directory of expert runs")->capture_default_str();
+  eval->add_option("--only", e->only, "evaluate only these expert ids");
+  eval->add_option("--episodes", e->eval.episodes_per_target, "episodes per target speed")->check(CLI::Range(1, 100000))->capture_default_str();
+  eval->add_flag("--stochastic", e->eval.stochastic, "sample actions instead of taking the mean");
+  eval->add_option("--seed", e->eval.seed, "episode seeds")->capture_default_str();
+  eval->add_option("--json", e->json_out, "also write the table as JSON (input of demos collect --passing)");
+  eval->callback([e] { run_eval(*e); });
+
+  auto c = std::make_shared<CollectFlags>();
+  CLI::App* demos = app.add_subcommand("demos", "demonstration sets from experts");
+  demos->require_subcommand(1);
+  CLI::App* collect = demos->add_subcommand("collect", "roll experts out into an HDF5 demonstration file");
+  collect->add_option("--experts-dir", c->dir, "directory of expert runs")->capture_default_str();
+  collect->add_option("--only", c->only, "collect only from these expert ids");
+  collect->add_option("--passing", c->passing, "collect only from experts that pass in this `experts eval --json` report")
+      ->check(CLI::ExistingFile);
+  collect->add_option("--out", c->out, "output .h5 file")->required();
+  collect->add_option("--episodes-per-expert", c->collect.episodes_per_expert, "episodes per expert")
+      ->check(CLI::Range(1, 100000))->capture_default_str();
+  collect->add_flag("--stochastic", c->collect.stochastic, "sample actions (default: mean actions)");
+  collect->add_option("--held-out", c->held_out, "expert ids marked held_out = 1 (kept out of VAE training)");
+  collect->add_option("--seed", c->collect.seed, "episode seeds")->capture_default_str();
+  collect->add_flag("--force", c->force, "replace an existing output file");
+  collect->callback([c] { run_collect(*c); });
+}
+
+}  // namespace vaegail::cli

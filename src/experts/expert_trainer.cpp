@@ -1,0 +1,189 @@
+#include "experts/expert_trainer.h"
+
+#include <chrono>
+#include <filesystem>
+
+#include "env/vec_env.h"
+#include "env/walker.h"
+#include "rl/rollout.h"
+#include "rl/update_batch.h"
+#include "util/atomic_file.h"
+#include "util/csv_log.h"
+#include "util/rng.h"
+
+namespace vaegail {
+
+namespace fs = std::filesystem;
+
+void to_json(nlohmann::json& j, const ExpertTrainOptions& o) {
+  j = {{"total_steps", o.total_steps}, {"num_envs", o.num_envs}, {"steps_per_env", o.steps_per_env},
+       {"env_threads", o.env_threads}, {"hidden", o.hidden}, {"gamma", o.gamma}, {"lambda", o.lambda},
+       {"learning_rate", o.learning_rate}, {"epochs", o.epochs}, {"minibatches", o.minibatches},
+       {"target_kl", o.target_kl}, {"checkpoint_every", o.checkpoint_every}, {"device", o.device}};
+}
+
+void from_json(const nlohmann::json& j, ExpertTrainOptions& o) {
+  const ExpertTrainOptions d;
+  o.total_steps = j.value("total_steps", d.total_steps);
+  o.num_envs = j.value("num_envs", d.num_envs);
+  o.steps_per_env = j.value("steps_per_env", d.steps_per_env);
+  o.env_threads = j.value("env_threads", d.env_threads);
+  o.hidden = j.value("hidden", d.hidden);
+  o.gamma = j.value("gamma", d.gamma);
+  o.lambda = j.value("lambda", d.lambda);
+  o.learning_rate = j.value("learning_rate", d.learning_rate);
+  o.epochs = j.value("epochs", d.epochs);
+  o.minibatches = j.value("minibatches", d.minibatches);
+  o.target_kl = j.value("target_kl", d.target_kl);
+  o.checkpoint_every = j.value("checkpoint_every", d.checkpoint_every);
+  o.device = j.value("device", d.device);
+}
+
+std::shared_ptr<Agent> make_expert_agent(const ExpertSpec& spec, const ExpertTrainOptions& options,
+                                         int obs_dim, int act_dim) {
+  torch::manual_seed(spec.seed);
+  AgentOptions a;
+  a.obs_dim = obs_dim;
+  a.condition_dim = spec.condition_dim();
+  a.act_dim = act_dim;
+  a.policy_hidden = options.hidden;
+  a.critic_hidden = options.hidden;
+  a.init_log_std = spec.init_log_std;
+  auto agent = Agent::make_gaussian(a);
+  agent->to(torch::Device(options.device));
+  return agent;
+}
+
+namespace {
+
+nlohmann::json read_json(const std::string& path) {
+  try {
+    return nlohmann::json::parse(read_file(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(path + ": malformed JSON: " + e.what());
+  }
+}
+
+struct RunState {
+  int iteration = 0;
+  std::int64_t steps = 0;
+  bool done = false;
+};
+
+RunState read_state(const std::string& run_dir) {
+  RunState s;
+  const std::string path = run_dir + "/state.json";
+  if (!fs::exists(path)) return s;
+  const auto j = read_json(path);
+  s.iteration = j.at("iteration");
+  s.steps = j.at("steps");
+  s.done = j.at("done");
+  return s;
+}
+
+void save(Agent& agent, const RunState& s, const std::string& run_dir) {
+  agent.save_checkpoint(run_dir + "/agent.pt");
+  write_file_atomically(run_dir + "/state.json",
+                        nlohmann::json{{"iteration", s.iteration}, {"steps", s.steps}, {"done", s.done}}.dump(2));
+}
+
+// Mean |forward speed - target| over the rollout's steps: a cheap training-time signal (the
+// torso's speed stands in for the centre of mass's); `vaegail experts eval` measures properly.
+double speed_error(const Rollout& r, const ExpertSpec& spec, int speed_index) {
+  torch::Tensor speed = r.observations.select(2, speed_index);
+  torch::Tensor target = spec.conditioned() ? r.conditions.select(2, 0)
+                                            : torch::full_like(speed, spec.targets[0]);
+  return (speed - target).abs().mean().item<double>();
+}
+
+int index_of(const std::vector<std::string>& names, const std::string& name) {
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<int>(i);
+  throw std::invalid_argument("observation has no '" + name + "'");
+}
+
+}  // namespace
+
+bool expert_done(const std::string& run_dir) { return read_state(run_dir).done; }
+
+void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, const std::string& run_dir,
+                  const std::function<void(std::int64_t)>& progress) {
+  if (spec.targets.empty()) throw std::invalid_argument(spec.id + ": no target speed");
+  fs::create_directories(run_dir);
+  const std::string spec_path = run_dir + "/spec.json";
+  if (fs::exists(spec_path)) {
+    const ExpertSpec existing = read_json(spec_path).get<ExpertSpec>();
+    if (existing.id != spec.id)
+      throw std::runtime_error(run_dir + " holds expert " + existing.id + ", not " + spec.id);
+  } else {
+    write_file_atomically(spec_path, nlohmann::json(spec).dump(2));
+  }
+  write_file_atomically(run_dir + "/options.json", nlohmann::json(options).dump(2));
+
+  WalkerEnv prototype;
+  prototype.set_context({spec.targets[0]});
+  auto agent = make_expert_agent(spec, options, prototype.obs_dim(), prototype.act_dim());
+  RunState state = read_state(run_dir);
+  if (state.iteration > 0) agent->load_checkpoint(run_dir + "/agent.pt");
+  if (state.steps >= options.total_steps) return;
+
+  VecEnv envs(prototype, options.num_envs, options.env_threads);
+  // Streams restart from the iteration count, so a resumed run is reproducible too.
+  Rng target_rng(derive_seed(spec.seed, 1000 + state.iteration));
+  EpisodeStartFn choose_target = [&](int, Env& env) -> std::vector<float> {
+    const double target = spec.targets[target_rng.next() % spec.targets.size()];
+    env.set_context({target});
+    return spec.conditioned() ? std::vector<float>{static_cast<float>(target)} : std::vector<float>{};
+  };
+  RolloutCollector collector(envs, agent, derive_seed(spec.seed, state.iteration), choose_target);
+  PpoOptions ppo_options;
+  ppo_options.learning_rate = options.learning_rate;
+  ppo_options.epochs = options.epochs;
+  ppo_options.minibatches = options.minibatches;
+  ppo_options.target_kl = options.target_kl;
+  ppo_options.seed = derive_seed(spec.seed, 2000 + state.iteration);
+  Ppo ppo(agent->policy_ptr(), agent->critic_ptr(), ppo_options);
+  CsvLog log(run_dir + "/metrics.csv",
+             {"iteration", "steps", "episodes", "mean_return", "mean_length", "fall_rate", "speed_error",
+              "approx_kl", "entropy", "value_loss", "seconds"});
+  const int speed_index = index_of(prototype.observation_spec().names, "rootx_vel");
+  const auto start = std::chrono::steady_clock::now();
+
+  while (state.steps < options.total_steps) {
+    const Rollout rollout = collector.collect(options.steps_per_env);
+    const PpoStats stats = ppo.update(make_update_batch(rollout, options.gamma, options.lambda));
+    state.steps += static_cast<std::int64_t>(options.steps_per_env) * options.num_envs;
+    ++state.iteration;
+    double returns = 0, lengths = 0, falls = 0;
+    for (const auto& e : rollout.episodes) {
+      returns += e.env_return;
+      lengths += e.length;
+      falls += e.terminated;
+    }
+    const double n = std::max<size_t>(rollout.episodes.size(), 1);
+    log.write({double(state.iteration), double(state.steps), double(rollout.episodes.size()), returns / n,
+               lengths / n, falls / n, speed_error(rollout, spec, speed_index), stats.approx_kl, stats.entropy,
+               stats.value_loss,
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+    state.done = state.steps >= options.total_steps;
+    if (state.done || state.iteration % options.checkpoint_every == 0) save(*agent, state, run_dir);
+    if (progress) progress(state.steps);
+  }
+}
+
+LoadedExpert load_expert(const std::string& run_dir) {
+  for (const char* file : {"spec.json", "options.json", "agent.pt"})
+    if (!fs::exists(run_dir + "/" + file))
+      throw std::runtime_error(run_dir + ": not an expert run (missing " + file + ")");
+  LoadedExpert e;
+  e.spec = read_json(run_dir + "/spec.json").get<ExpertSpec>();
+  e.options = read_json(run_dir + "/options.json").get<ExpertTrainOptions>();
+  WalkerEnv prototype;
+  e.agent = make_expert_agent(e.spec, e.options, prototype.obs_dim(), prototype.act_dim());
+  e.agent->load_checkpoint(run_dir + "/agent.pt");
+  e.agent->normalizer().set_frozen(true);
+  e.agent->eval();
+  return e;
+}
+
+}  // namespace vaegail

@@ -1,0 +1,59 @@
+// Trains one walker expert with PPO on the target-speed reward, in a run directory that a
+// killed run resumes from:
+//   run_dir/spec.json      the ExpertSpec
+//   run_dir/options.json   the training options
+//   run_dir/agent.pt       policy, critic and observation normaliser (written atomically)
+//   run_dir/state.json     iteration, steps, done (written atomically after agent.pt)
+//   run_dir/metrics.csv    one row per iteration
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "experts/expert_spec.h"
+#include "rl/agent.h"
+#include "rl/ppo.h"
+
+namespace vaegail {
+
+struct ExpertTrainOptions {
+  std::int64_t total_steps = 3000000;
+  int num_envs = 16;
+  int steps_per_env = 256;
+  int env_threads = 1;
+  std::vector<int> hidden = {64, 64};
+  double gamma = 0.99;
+  double lambda = 0.95;
+  double learning_rate = 3e-4;
+  int epochs = 10;
+  int minibatches = 32;
+  double target_kl = 0.02;
+  int checkpoint_every = 5;  // iterations
+  std::string device = "cpu";
+};
+
+void to_json(nlohmann::json& j, const ExpertTrainOptions& o);
+void from_json(const nlohmann::json& j, ExpertTrainOptions& o);
+
+std::shared_ptr<Agent> make_expert_agent(const ExpertSpec& spec, const ExpertTrainOptions& options,
+                                         int obs_dim, int act_dim);
+
+// Trains until options.total_steps, resuming whatever run_dir holds; returns at once if the
+// run is done. progress(steps_done) is called after every iteration.
+void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, const std::string& run_dir,
+                  const std::function<void(std::int64_t)>& progress = nullptr);
+
+struct LoadedExpert {
+  ExpertSpec spec;
+  ExpertTrainOptions options;
+  std::shared_ptr<Agent> agent;
+};
+// Throws naming the directory and the missing or malformed file.
+LoadedExpert load_expert(const std::string& run_dir);
+bool expert_done(const std::string& run_dir);
+
+}  // namespace vaegail
