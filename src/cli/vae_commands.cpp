@@ -1,0 +1,395 @@
+// `vaegail vae ...`: train the trajectory VAE on a demonstration file, embed demonstrations,
+// test the embedding with k-NN, imitate demonstrations and interpolate between them with the
+// VAE policy; and `vaegail bench vae`.
+#include <torch/torch.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "cli/commands.h"
+#include "env/registry.h"
+#include "util/atomic_file.h"
+#include "util/progress.h"
+#include "vae/demo_dataset.h"
+#include "vae/embedding.h"
+#include "vae/imitation.h"
+#include "vae/vae_bench.h"
+#include "vae/vae_trainer.h"
+
+namespace vaegail::cli {
+
+namespace fs = std::filesystem;
+using vae::TrajectoryVae;
+
+namespace {
+
+torch::Device parse_device(const std::string& name) {
+  if (name == "cpu") return torch::kCPU;
+  if (name == "cuda") {
+    if (!torch::cuda::is_available())
+      throw std::invalid_argument("--device cuda: this LibTorch build has no CUDA or sees no GPU");
+    return torch::kCUDA;
+  }
+  throw std::invalid_argument("--device must be cpu or cuda, not '" + name + "'");
+}
+
+CLI::Option* add_device_option(CLI::App& command, std::string& device) {
+  return command.add_option("--device", device, "cpu, or cuda (the state decoder then runs its conv1d path)")
+      ->capture_default_str();
+}
+
+void require_dims_match(const TrajectoryVae& model, const DemoSet& demos) {
+  const auto& c = model->config();
+  if (demos.header.obs_dim() != c.state_dim || demos.header.act_dim() != c.action_dim)
+    throw std::invalid_argument(demos.path + ": observations/actions have " + std::to_string(demos.header.obs_dim()) +
+                                "/" + std::to_string(demos.header.act_dim()) + " components, the checkpoint's VAE " +
+                                std::to_string(c.state_dim) + "/" + std::to_string(c.action_dim));
+}
+
+std::vector<int64_t> all_episodes(const DemoSet& demos) {
+  std::vector<int64_t> index(demos.episodes.size());
+  for (size_t i = 0; i < index.size(); ++i) index[i] = static_cast<int64_t>(i);
+  return index;
+}
+
+// mu of q(z | x) for the given episodes, in batches with a progress bar: [M, Z] on the CPU
+// (and sigma when asked for).
+torch::Tensor encode_episodes(TrajectoryVae& model, const DemoSet& demos, const std::vector<int64_t>& episodes,
+                              torch::Tensor* sigma = nullptr) {
+  const auto data = vae::to_trajectory_dataset(demos, episodes, model->config());
+  const int64_t M = data.size(), batch = 64;
+  Progress progress("encode", M, "demos");
+  std::vector<torch::Tensor> mus, sigmas;
+  for (int64_t b = 0; b < M; b += batch) {
+    const int64_t n = std::min(batch, M - b);
+    const auto [mu, s] = vae::encode(model, data.states.narrow(0, b, n),
+                                     data.mask.defined() ? data.mask.narrow(0, b, n) : torch::Tensor(), n);
+    mus.push_back(mu);
+    sigmas.push_back(s);
+    progress.advance(n);
+  }
+  progress.finish();
+  if (sigma) *sigma = torch::cat(sigmas);
+  return torch::cat(mus);
+}
+
+vae::LatentPolicy vae_mean_policy(TrajectoryVae model, torch::Device device) {
+  return [model, device](const torch::Tensor& obs, const torch::Tensor& z) mutable {
+    return model->action_mean(obs.to(device), z.to(device));
+  };
+}
+
+// The environment the demonstrations were recorded in, running as long as the longest.
+std::unique_ptr<Env> demo_env(const DemoSet& demos, const TrajectoryVae& model) {
+  EnvRequest request;
+  request.task = demos.header.env_id;
+  for (const auto& e : demos.episodes) request.episode_length = std::max(request.episode_length, e.length());
+  auto env = make_env(request);
+  if (env->obs_dim() != model->config().state_dim || env->act_dim() != model->config().action_dim)
+    throw std::invalid_argument("env '" + request.task + "' does not match the checkpoint's VAE dimensions");
+  return env;
+}
+
+struct ModelFlags {
+  std::string checkpoint, demos, device = "cpu";
+};
+
+void add_model_flags(CLI::App& command, ModelFlags& f) {
+  command.add_option("--checkpoint", f.checkpoint, "trainer checkpoint (RUN_DIR/checkpoints/latest.pt)")->required();
+  command.add_option("--demos", f.demos, "demonstration file (.h5)")->required();
+  add_device_option(command, f.device);
+}
+
+struct Loaded {
+  torch::Device device;
+  TrajectoryVae model;
+  DemoSet demos;
+};
+
+Loaded load(const ModelFlags& f) {
+  const auto device = parse_device(f.device);
+  if (!fs::exists(f.checkpoint)) throw std::invalid_argument(f.checkpoint + ": no such checkpoint");
+  Loaded l{device, vae::load_trained_vae(f.checkpoint, device), read_demos(f.demos)};
+  l.model->eval();
+  require_dims_match(l.model, l.demos);
+  return l;
+}
+
+// ---- vae train ------------------------------------------------------------------------
+struct TrainFlags {
+  std::string demos, run_dir, preset = "walker", config, device = "cpu";
+  int epochs = 100;
+  int batch_size = 0;
+  double lr = 0;
+  std::uint64_t seed = 0;
+};
+
+// The run directory's own config when resuming, else the preset; then --config; then flags.
+vae::VaeConfig train_config(const TrainFlags& f, const DemoHeader& header) {
+  const std::string saved = (fs::path(f.run_dir) / "config.json").string();
+  vae::VaeConfig c = fs::exists(saved) ? vae::VaeConfig::load(saved)
+                                       : vae::VaeConfig::preset(f.preset, header.obs_dim(), header.act_dim());
+  if (!f.config.empty()) c = vae::VaeConfig::load(f.config, c);
+  if (f.batch_size > 0) c.batch_size = f.batch_size;
+  if (f.lr > 0) c.learning_rate = f.lr;
+  c.validate();
+  return c;
+}
+
+void run_train(const TrainFlags& f) {
+  auto demos = read_demos(f.demos);
+  const auto config = train_config(f, demos.header);
+  auto data = vae::make_demo_training_data(std::move(demos), config, f.seed);
+  std::printf("%s: %zu training episodes, %zu validation (%s)\n", f.demos.c_str(), data.split.train.size(),
+              data.split.val.size(),
+              std::any_of(data.demos.episodes.begin(), data.demos.episodes.end(), vae::is_held_out)
+                  ? "held-out experts"
+                  : "no held-out experts: a seeded 10% of the episodes");
+  vae::TrainerOptions options;
+  options.run_dir = f.run_dir;
+  options.epochs = f.epochs;
+  options.seed = f.seed;
+  options.device = parse_device(f.device);
+  vae::VaeTrainer trainer(config, options, data.train, data.val);
+  if (trainer.epoch() > 0) std::printf("resuming %s after epoch %d\n", f.run_dir.c_str(), trainer.epoch());
+  while (trainer.epoch() < f.epochs) {
+    const auto m = trainer.train_epoch();
+    std::printf("epoch %d/%d  train %.2f (action %.2f, state %.2f, kl %.2f)  val %.2f (action %.2f, state %.2f, kl %.2f)  %.1f s\n",
+                m.epoch, f.epochs, m.train.total, m.train.action_nll, m.train.state_nll, m.train.kl, m.val.total,
+                m.val.action_nll, m.val.state_nll, m.val.kl, m.seconds);
+    std::fflush(stdout);
+  }
+  std::printf("metrics: %s\ncheckpoint: %s\n", trainer.metrics_path().c_str(), trainer.checkpoint_path().c_str());
+}
+
+void add_train(CLI::App& vae) {
+  auto f = std::make_shared<TrainFlags>();
+  CLI::App* c = vae.add_subcommand("train", "train the VAE on demonstrations (rerun with the same --run-dir to resume)");
+  c->add_option("--demos", f->demos, "demonstration file (.h5)")->required();
+  c->add_option("--run-dir", f->run_dir, "config.json, metrics.csv, checkpoints/latest.pt")->required();
+  c->add_option("--preset", f->preset, "network sizes of the paper's Table 1")
+      ->check(CLI::IsMember({"walker", "arm", "jaco", "humanoid"}))->capture_default_str();
+  c->add_option("--config", f->config, "JSON overriding config fields (see VaeConfig)");
+  c->add_option("--epochs", f->epochs, "train until this many epochs in total")->check(CLI::Range(1, 1 << 30))->capture_default_str();
+  c->add_option("--batch-size", f->batch_size, "trajectories per step (default: the config's, 32)")->check(CLI::Range(1, 1 << 20));
+  c->add_option("--lr", f->lr, "Adam learning rate (default: the config's, 1e-4)")->check(CLI::PositiveNumber);
+  c->add_option("--seed", f->seed, "initialisation, shuffling, noise and the validation split")->capture_default_str();
+  add_device_option(*c, f->device);
+  c->callback([f] { run_train(*f); });
+}
+
+// ---- vae embed ------------------------------------------------------------------------
+void add_embed(CLI::App& vae) {
+  auto f = std::make_shared<ModelFlags>();
+  auto out = std::make_shared<std::string>();
+  CLI::App* c = vae.add_subcommand("embed", "one CSV row per demonstration: its labels and q(z | x) = N(mu, sigma)");
+  add_model_flags(*c, *f);
+  c->add_option("--out", *out, "CSV: episode,expert_id,context,achieved_speed,held_out,mu_*,sigma_*")->required();
+  c->callback([f, out] {
+    torch::NoGradGuard no_grad;
+    auto l = load(*f);
+    torch::Tensor sigma;
+    const auto mu = encode_episodes(l.model, l.demos, all_episodes(l.demos), &sigma).to(torch::kDouble);
+    sigma = sigma.to(torch::kDouble);
+    std::vector<vae::EmbeddingRow> rows;
+    for (int i = 0; i < static_cast<int>(l.demos.episodes.size()); ++i) {
+      const Episode& e = l.demos.episodes[i];
+      vae::EmbeddingRow r;
+      r.episode = i;
+      r.expert_id = e.expert_id;
+      r.context = e.context.empty() ? std::nan("") : e.context[0];
+      r.achieved_speed = vae::achieved_speed(l.demos, i);
+      r.held_out = vae::is_held_out(e);
+      r.mu.assign(mu[i].data_ptr<double>(), mu[i].data_ptr<double>() + mu.size(1));
+      r.sigma.assign(sigma[i].data_ptr<double>(), sigma[i].data_ptr<double>() + sigma.size(1));
+      rows.push_back(std::move(r));
+    }
+    write_file_atomically(*out, vae::embedding_csv(rows));
+    std::printf("%zu embeddings (z %lld) -> %s\n", rows.size(), static_cast<long long>(mu.size(1)), out->c_str());
+  });
+}
+
+// ---- vae knn --------------------------------------------------------------------------
+void add_knn(CLI::App& vae) {
+  auto path = std::make_shared<std::string>();
+  auto k = std::make_shared<int>(5);
+  CLI::App* c = vae.add_subcommand("knn", "classify held-out embeddings by a k-NN vote of the training ones' target");
+  c->add_option("--embeddings", *path, "CSV from `vaegail vae embed`")->required();
+  c->add_option("--k", *k, "neighbours")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  c->callback([path, k] {
+    const auto rows = vae::parse_embedding_csv(read_file(*path), *path);
+    std::fputs(vae::format_knn(vae::knn_classify(rows, *k)).c_str(), stdout);
+  });
+}
+
+// ---- vae imitate ----------------------------------------------------------------------
+struct ImitateFlags {
+  ModelFlags model;
+  std::string episodes = "all", out;
+  bool held_out_only = false;
+  vae::ImitationOptions rollout;
+};
+
+// "all", or N episodes spread evenly over the selection (so every expert is represented).
+std::vector<int64_t> choose_episodes(const DemoSet& demos, const std::string& which, bool held_out_only) {
+  std::vector<int64_t> pool;
+  for (int64_t i = 0; i < static_cast<int64_t>(demos.episodes.size()); ++i)
+    if (!held_out_only || vae::is_held_out(demos.episodes[i])) pool.push_back(i);
+  if (pool.empty()) throw std::invalid_argument(demos.path + ": no episodes to imitate" + (held_out_only ? " (none held out)" : ""));
+  if (which == "all") return pool;
+  int64_t n = 0;
+  try {
+    size_t used = 0;
+    n = std::stoll(which, &used);
+    if (used != which.size() || n < 1) throw std::invalid_argument(which);
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--episodes must be 'all' or a positive count, not '" + which + "'");
+  }
+  if (n >= static_cast<int64_t>(pool.size())) return pool;
+  std::vector<int64_t> chosen;
+  for (int64_t j = 0; j < n; ++j) chosen.push_back(pool[j * static_cast<int64_t>(pool.size()) / n]);
+  return chosen;
+}
+
+void run_imitate(const ImitateFlags& f) {
+  torch::NoGradGuard no_grad;
+  auto l = load(f.model);
+  const auto episodes = choose_episodes(l.demos, f.episodes, f.held_out_only);
+  const auto z = encode_episodes(l.model, l.demos, episodes);
+  const auto env = demo_env(l.demos, l.model);
+  Progress progress("imitate", static_cast<std::int64_t>(episodes.size()), "episodes");
+  const auto outcomes = vae::roll_out_latent_policy(*env, vae::rollout_starts(l.demos, episodes), z,
+                                                    vae_mean_policy(l.model, l.device), f.rollout, &progress);
+  progress.finish();
+  std::vector<double> demo_speed, imitation_speed;
+  int falls = 0;
+  std::string csv = "episode,expert_id,context,held_out,demo_speed,imitation_speed,abs_diff,fell,steps\n";
+  for (size_t j = 0; j < episodes.size(); ++j) {
+    const Episode& e = l.demos.episodes[episodes[j]];
+    const auto& o = outcomes[j];
+    demo_speed.push_back(vae::achieved_speed(l.demos, episodes[j]));
+    imitation_speed.push_back(o.achieved_speed);
+    falls += o.fell;
+    char row[256];
+    std::snprintf(row, sizeof row, "%lld,%s,%.9g,%d,%.6f,%.6f,%.6f,%d,%d\n", static_cast<long long>(episodes[j]),
+                  e.expert_id.c_str(), e.context.empty() ? std::nan("") : e.context[0], vae::is_held_out(e) ? 1 : 0,
+                  demo_speed.back(), o.achieved_speed, std::abs(demo_speed.back() - o.achieved_speed), o.fell ? 1 : 0,
+                  o.episode.length());
+    csv += row;
+  }
+  if (!f.out.empty()) write_file_atomically(f.out, csv);
+  std::printf("imitated %zu demonstrations%s: median |speed difference| %.3f m/s, fall rate %.1f%%%s%s\n",
+              episodes.size(), f.held_out_only ? " (held out)" : "",
+              vae::median_abs_difference(demo_speed, imitation_speed), 100.0 * falls / episodes.size(),
+              f.out.empty() ? "" : "; per episode: ", f.out.c_str());
+}
+
+void add_imitate(CLI::App& vae) {
+  auto f = std::make_shared<ImitateFlags>();
+  CLI::App* c = vae.add_subcommand("imitate", "encode demonstrations and roll out the VAE policy's mean action from their initial states");
+  add_model_flags(*c, f->model);
+  c->add_option("--episodes", f->episodes, "'all' or N spread evenly over the file")->capture_default_str();
+  c->add_flag("--held-out-only", f->held_out_only, "only episodes with held_out = 1 (one-shot imitation)");
+  c->add_option("--out", f->out, "per-episode CSV: demo and imitation speed, |difference|, fell");
+  c->add_option("--envs", f->rollout.num_envs, "environments stepped together")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  c->add_option("--threads", f->rollout.num_threads, "threads stepping them")->check(CLI::Range(1, 1 << 10))->capture_default_str();
+  c->callback([f] { run_imitate(*f); });
+}
+
+// ---- vae interpolate ------------------------------------------------------------------
+struct InterpolateFlags {
+  ModelFlags model;
+  std::string pair;
+  std::vector<double> alphas{0, 0.25, 0.5, 0.75, 1};
+};
+
+std::pair<int64_t, int64_t> parse_pair(const std::string& text, int64_t episodes) {
+  const auto comma = text.find(',');
+  try {
+    size_t used_i = 0, used_j = 0;
+    const int64_t i = std::stoll(text.substr(0, comma), &used_i);
+    const int64_t j = std::stoll(text.substr(comma + 1), &used_j);
+    if (comma == std::string::npos || used_i != comma || used_j != text.size() - comma - 1) throw std::invalid_argument(text);
+    if (i < 0 || j < 0 || i >= episodes || j >= episodes)
+      throw std::out_of_range("--pair " + text + ": episodes are 0.." + std::to_string(episodes - 1));
+    return {i, j};
+  } catch (const std::out_of_range& e) {
+    throw std::invalid_argument(e.what());
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--pair must be I,J (two episode indices), not '" + text + "'");
+  }
+}
+
+void run_interpolate(const InterpolateFlags& f) {
+  torch::NoGradGuard no_grad;
+  auto l = load(f.model);
+  const auto [i, j] = parse_pair(f.pair, static_cast<int64_t>(l.demos.episodes.size()));
+  const auto mu = encode_episodes(l.model, l.demos, {i, j});
+  std::vector<torch::Tensor> zs;
+  for (double a : f.alphas) zs.push_back((1 - a) * mu[0] + a * mu[1]);
+  const auto env = demo_env(l.demos, l.model);
+  // Every alpha starts from demonstration I's initial state, so only z differs.
+  const std::vector<vae::RolloutStart> starts(f.alphas.size(), vae::rollout_starts(l.demos, {i})[0]);
+  Progress progress("interpolate", static_cast<std::int64_t>(f.alphas.size()), "rollouts");
+  const auto outcomes = vae::roll_out_latent_policy(*env, starts, torch::stack(zs), vae_mean_policy(l.model, l.device),
+                                                    {}, &progress);
+  progress.finish();
+  std::printf("demo %lld speed %.3f m/s, demo %lld speed %.3f m/s\n", static_cast<long long>(i),
+              vae::achieved_speed(l.demos, i), static_cast<long long>(j), vae::achieved_speed(l.demos, j));
+  std::printf("alpha  achieved_speed  fell\n");
+  for (size_t a = 0; a < f.alphas.size(); ++a)
+    std::printf("%5.2f  %14.3f  %4s\n", f.alphas[a], outcomes[a].achieved_speed, outcomes[a].fell ? "yes" : "no");
+}
+
+void add_interpolate(CLI::App& vae) {
+  auto f = std::make_shared<InterpolateFlags>();
+  CLI::App* c = vae.add_subcommand("interpolate", "roll out the VAE policy at z = (1 - alpha) mu_I + alpha mu_J");
+  add_model_flags(*c, f->model);
+  c->add_option("--pair", f->pair, "I,J: episode indices in the demonstration file")->required();
+  c->add_option("--alphas", f->alphas, "comma-separated blend weights")->delimiter(',')->capture_default_str();
+  c->callback([f] { run_interpolate(*f); });
+}
+
+// ---- bench vae ------------------------------------------------------------------------
+struct BenchFlags {
+  std::string preset = "walker";
+  int state_dim = 18, action_dim = 6;
+  vae::VaeBenchOptions bench;
+};
+
+void add_bench_vae(CLI::App& bench) {
+  auto f = std::make_shared<BenchFlags>();
+  CLI::App* c = bench.add_subcommand("vae", "VAE training throughput vs this machine's sgemm; fused WaveNet kernel vs conv1d");
+  c->add_option("--preset", f->preset, "network sizes of the paper's Table 1")
+      ->check(CLI::IsMember({"walker", "arm", "jaco", "humanoid"}))->capture_default_str();
+  c->add_option("--state-dim", f->state_dim, "state components (walker: 18)")->check(CLI::Range(1, 1 << 16))->capture_default_str();
+  c->add_option("--action-dim", f->action_dim, "action components (walker: 6)")->check(CLI::Range(1, 1 << 16))->capture_default_str();
+  c->add_option("--batch", f->bench.batch, "trajectories per step")->check(CLI::Range(1, 1 << 16))->capture_default_str();
+  c->add_option("--steps", f->bench.steps, "steps per trajectory")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  c->add_option("--seconds", f->bench.seconds, "measuring time per part (after one untimed run)")
+      ->check(CLI::Range(0.0, 3600.0))->capture_default_str();
+  c->callback([f] {
+    f->bench.config = vae::VaeConfig::preset(f->preset, f->state_dim, f->action_dim);
+    const auto r = vae::run_vae_bench(f->bench);
+    std::fputs(vae::format_vae_bench(f->bench, r).c_str(), stdout);
+  });
+}
+
+}  // namespace
+
+void add_vae_commands(CLI::App& app) {
+  CLI::App* vae = app.add_subcommand("vae", "trajectory VAE: train, embed, knn, imitate, interpolate");
+  vae->require_subcommand(1);
+  add_train(*vae);
+  add_embed(*vae);
+  add_knn(*vae);
+  add_imitate(*vae);
+  add_interpolate(*vae);
+  add_bench_vae(*app.get_subcommand("bench"));  // add_bench_commands runs first
+}
+
+}  // namespace vaegail::cli

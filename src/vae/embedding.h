@@ -1,0 +1,44 @@
+// Embeddings of demonstrations as CSV (`vaegail vae embed`) and the k-nearest-neighbour test
+// of their structure (`vaegail vae knn`): do held-out demonstrations land next to training
+// demonstrations of the same target speed?
+//
+// CSV columns, exactly:
+//   episode,expert_id,context,achieved_speed,held_out,mu_0..mu_{d-1},sigma_0..sigma_{d-1}
+// episode = index in the demonstration file, context = its first context value (the walker's
+// target speed), achieved_speed = mean forward speed, held_out = 0/1, (mu, sigma) = q(z | x).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace vaegail::vae {
+
+struct EmbeddingRow {
+  int episode = 0;
+  std::string expert_id;
+  double context = 0;
+  double achieved_speed = 0;
+  bool held_out = false;
+  std::vector<double> mu, sigma;
+};
+
+// Header and one line per row; all rows must have the same latent size.
+std::string embedding_csv(const std::vector<EmbeddingRow>& rows);
+// Throws std::invalid_argument "where: line N: problem" on a malformed file.
+std::vector<EmbeddingRow> parse_embedding_csv(const std::string& text, const std::string& where);
+
+struct KnnResult {
+  int k = 0;
+  int total = 0, correct = 0;
+  std::map<double, std::pair<int, int>> per_target;  // context -> (correct, total)
+  double accuracy() const { return total ? static_cast<double>(correct) / total : 0.0; }
+};
+
+// Each held-out row gets the context most common among its k nearest training rows
+// (Euclidean on mu); a tied vote goes to the tied context with the nearest member.
+// Throws std::invalid_argument without training or held-out rows.
+KnnResult knn_classify(const std::vector<EmbeddingRow>& rows, int k);
+std::string format_knn(const KnnResult& result);
+
+}  // namespace vaegail::vae

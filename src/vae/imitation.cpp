@@ -1,0 +1,94 @@
+#include "vae/imitation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "data/record.h"
+
+namespace vaegail::vae {
+
+namespace {
+
+int feature_index(const Env& env, const std::string& name) {
+  const auto& names = env.feature_names();
+  const auto it = std::find(names.begin(), names.end(), name);
+  return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+}
+
+bool fell(const Episode& e, int fallen_feature, int n_features) {
+  if (!e.terminations.empty() && e.terminations.back()) return true;
+  if (fallen_feature < 0) return false;
+  for (size_t r = 0; r * n_features < e.features.size(); ++r)
+    if (e.features[r * n_features + fallen_feature] > 0.5) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<RolloutStart> rollout_starts(const DemoSet& demos, const std::vector<int64_t>& episodes) {
+  std::vector<RolloutStart> starts;
+  for (int64_t i : episodes) starts.push_back({demos.episodes.at(i).seed, demos.episodes.at(i).context});
+  return starts;
+}
+
+std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
+                                                     const std::vector<RolloutStart>& starts,
+                                                     const torch::Tensor& z,
+                                                     const LatentPolicy& policy,
+                                                     const ImitationOptions& options,
+                                                     Progress* progress) {
+  const int64_t M = static_cast<int64_t>(starts.size());
+  if (z.dim() != 2 || z.size(0) != M)
+    throw std::invalid_argument("roll_out_latent_policy: z must be [" + std::to_string(M) + ", Z]");
+  const int speed = feature_index(prototype, options.speed_feature);
+  if (speed < 0)
+    throw std::invalid_argument("roll_out_latent_policy: env '" + prototype.id() +
+                                "' has no feature '" + options.speed_feature + "'");
+  const auto z_cpu = z.detach().to(torch::kCPU, torch::kFloat).contiguous();
+  const int obs_dim = prototype.obs_dim(), act_dim = prototype.act_dim();
+
+  RecordRequest request;
+  for (const auto& s : starts) {
+    request.seeds.push_back(s.seed);
+    request.contexts.push_back(s.context.empty() ? prototype.context() : s.context);
+  }
+  request.num_envs = options.num_envs;
+  request.num_threads = options.num_threads;
+  const BatchPolicy batch = [&](int n, const float* observations, const int* episodes, const int*,
+                                float* actions) {
+    torch::NoGradGuard no_grad;
+    const auto obs = torch::from_blob(const_cast<float*>(observations), {n, obs_dim});
+    const auto rows = torch::from_blob(const_cast<int*>(episodes), {n}, torch::kInt).to(torch::kLong);
+    const auto a = policy(obs, z_cpu.index_select(0, rows)).to(torch::kCPU, torch::kFloat).contiguous();
+    if (a.dim() != 2 || a.size(0) != n || a.size(1) != act_dim)
+      throw std::invalid_argument("roll_out_latent_policy: the policy must return [N, " +
+                                  std::to_string(act_dim) + "] actions");
+    std::copy(a.data_ptr<float>(), a.data_ptr<float>() + n * act_dim, actions);
+  };
+  auto episodes = record_episodes(prototype, request, batch, progress);
+
+  const int n_features = static_cast<int>(prototype.feature_names().size());
+  const int fallen = feature_index(prototype, options.fallen_feature);
+  std::vector<ImitationOutcome> out;
+  for (auto& e : episodes) {
+    ImitationOutcome o;
+    o.achieved_speed = e.mean_feature(speed, n_features);
+    o.fell = fell(e, fallen, n_features);
+    o.episode = std::move(e);
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
+double median_abs_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) throw std::invalid_argument("median_abs_difference: sizes differ");
+  if (a.empty()) return 0.0;
+  std::vector<double> d;
+  for (size_t i = 0; i < a.size(); ++i) d.push_back(std::abs(a[i] - b[i]));
+  std::sort(d.begin(), d.end());
+  const size_t n = d.size();
+  return n % 2 ? d[n / 2] : 0.5 * (d[n / 2 - 1] + d[n / 2]);
+}
+
+}  // namespace vaegail::vae

@@ -1,0 +1,60 @@
+// One-shot imitation (paper section 4.2): roll a z-conditioned policy out from the initial
+// states of demonstrations and measure what it achieves. Shared by the VAE's commands and the
+// GAIL stage, so the policy is any function of (observations, z), not the VAE.
+#pragma once
+
+#include <torch/torch.h>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "data/demos.h"
+#include "env/env.h"
+
+namespace vaegail {
+class Progress;
+}
+
+namespace vaegail::vae {
+
+// observations [N, obs_dim] float CPU, z [N, Z] float CPU -> actions [N, act_dim] (any float
+// tensor, any device). Called once per control step with the episodes still running.
+using LatentPolicy = std::function<torch::Tensor(const torch::Tensor& observations,
+                                                 const torch::Tensor& z)>;
+
+// Where an imitation starts: the demonstration's reset seed and context; with both the env
+// reproduces the demonstration's initial state exactly.
+struct RolloutStart {
+  std::uint64_t seed = 0;
+  std::vector<double> context;
+};
+
+std::vector<RolloutStart> rollout_starts(const DemoSet& demos, const std::vector<int64_t>& episodes);
+
+struct ImitationOptions {
+  int num_envs = 32;    // environments stepped together (the policy's batch)
+  int num_threads = 1;  // threads stepping them
+  std::string speed_feature = "com_speed";
+  std::string fallen_feature = "fallen";  // optional; terminations count as falls too
+};
+
+struct ImitationOutcome {
+  double achieved_speed = 0;  // mean of speed_feature over the states the actions reached
+  bool fell = false;
+  Episode episode;            // the whole rollout
+};
+
+// starts.size() episodes, each with its own row of z [M, Z]; results in start order.
+std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
+                                                     const std::vector<RolloutStart>& starts,
+                                                     const torch::Tensor& z,
+                                                     const LatentPolicy& policy,
+                                                     const ImitationOptions& options = {},
+                                                     Progress* progress = nullptr);
+
+// Median of |a - b| over pairs; 0 for none.
+double median_abs_difference(const std::vector<double>& a, const std::vector<double>& b);
+
+}  // namespace vaegail::vae

@@ -1,0 +1,145 @@
+#include "vae/trajectory_vae.h"
+
+#include <gtest/gtest.h>
+
+#include "vae/toy_trajectories.h"
+
+namespace vaegail::vae {
+namespace {
+
+VaeConfig tiny_config(int64_t D = 4, int64_t A = 2) {
+  VaeConfig c = VaeConfig::walker(static_cast<int>(D), static_cast<int>(A));
+  c.lstm_hidden = 16;
+  c.latent_dim = 2;
+  c.action_hidden = {32, 32};
+  c.wavenet_channels = 8;
+  c.wavenet_layers = 2;
+  c.mixture_components = 2;
+  return c;
+}
+
+class TrajectoryVaeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    torch::set_num_threads(1);
+    torch::manual_seed(8);
+  }
+};
+
+TEST_F(TrajectoryVaeTest, LossTermsAddUp) {
+  auto c = tiny_config();
+  c.kl_weight = 0.25;
+  TrajectoryVae vae(c);
+  const auto [states, actions] = testing::toy_trajectories(3, 10, 4, 2, 1);
+  vae->fit_normalization(states, actions);
+  const auto loss = vae->loss(states, actions, {}, torch::randn({3, 2}));
+  EXPECT_EQ(loss.per_trajectory.sizes(), torch::IntArrayRef({3}));
+  EXPECT_NEAR(loss.total.item<double>(),
+              loss.action_nll.item<double>() + loss.state_nll.item<double>() +
+                  0.25 * loss.kl.item<double>(),
+              1e-3);
+  EXPECT_NEAR(loss.per_trajectory.mean().item<double>(), loss.total.item<double>(), 1e-4);
+  EXPECT_GT(loss.kl.item<double>(), 0.0);
+}
+
+TEST_F(TrajectoryVaeTest, LossIsTheSumOfTheThreeDensities) {
+  // Recompute the objective of one trajectory from the parts, with z fixed through the noise.
+  TrajectoryVae vae(tiny_config());
+  const auto [states, actions] = testing::toy_trajectories(1, 6, 4, 2, 2);
+  vae->fit_normalization(states, actions);
+  const auto noise = torch::randn({1, 2});
+  const auto loss = vae->loss(states, actions, {}, noise);
+  const auto x = vae->normalize_states(states), a = vae->normalize_actions(actions);
+  const auto q = vae->encoder()->forward(x);
+  const auto z = q.mean + q.log_std.exp() * noise;
+  double action_lp = 0, state_lp = 0;
+  for (int t = 0; t < 6; ++t) {
+    const auto xt = x.select(1, t), xn = x.select(1, t + 1);
+    action_lp += vae->action_decoder()->log_prob(xt, z, a.select(1, t)).item<double>();
+    state_lp += mixture_log_prob(xn, vae->state_decoder()->forward_reference(xt, xn, z))
+                    .sum()
+                    .item<double>();
+  }
+  EXPECT_NEAR(loss.action_nll.item<double>(), -action_lp, 1e-3);
+  EXPECT_NEAR(loss.state_nll.item<double>(), -state_lp, 1e-3);
+}
+
+TEST_F(TrajectoryVaeTest, MaskedLossEqualsLossOfTheTruncatedTrajectory) {
+  TrajectoryVae vae(tiny_config());
+  const auto [states, actions] = testing::toy_trajectories(2, 8, 4, 2, 3);
+  vae->fit_normalization(states, actions);
+  const auto noise = torch::randn({2, 2});
+  auto mask = torch::ones({2, 8}, torch::kBool);
+  mask.index_put_({0, torch::indexing::Slice(5)}, false);  // trajectory 0: 5 steps
+  auto padded_states = states.clone(), padded_actions = actions.clone();
+  padded_states.index_put_({0, torch::indexing::Slice(6)}, NAN);
+  padded_actions.index_put_({0, torch::indexing::Slice(5)}, NAN);
+  const auto both = vae->loss(padded_states, padded_actions, mask, noise);
+  const auto short0 = vae->loss(states.narrow(0, 0, 1).narrow(1, 0, 6),
+                                actions.narrow(0, 0, 1).narrow(1, 0, 5), {}, noise.narrow(0, 0, 1));
+  const auto full1 = vae->loss(states.narrow(0, 1, 1), actions.narrow(0, 1, 1), {}, noise.narrow(0, 1, 1));
+  EXPECT_NEAR(both.per_trajectory[0].item<double>(), short0.total.item<double>(), 1e-3);
+  EXPECT_NEAR(both.per_trajectory[1].item<double>(), full1.total.item<double>(), 1e-3);
+  // NaN padding leaves no trace in the gradients either.
+  both.total.backward();
+  for (const auto& p : vae->parameters())
+    EXPECT_TRUE(torch::isfinite(p.grad()).all().item<bool>());
+}
+
+TEST_F(TrajectoryVaeTest, NormalisationIsStoredInTheModule) {
+  TrajectoryVae vae(tiny_config());
+  const auto [states, actions] = testing::toy_trajectories(4, 5, 4, 2, 4);
+  vae->fit_normalization(states, actions);
+  const auto x = vae->normalize_states(states.reshape({-1, 4}));
+  EXPECT_LT(x.mean(0).abs().max().item<double>(), 1e-4);
+  EXPECT_NEAR(x.std(0, /*unbiased=*/false).mean().item<double>(), 1.0, 1e-4);
+  const auto buffers = vae->named_buffers();
+  ASSERT_TRUE(buffers.contains("state_mean") && buffers.contains("action_std"));
+  std::stringstream stream;
+  torch::save(vae, stream);
+  TrajectoryVae copy(tiny_config());
+  torch::load(copy, stream);
+  EXPECT_TRUE(torch::equal(copy->named_buffers()["state_std"], buffers["state_std"]));
+  EXPECT_TRUE(torch::allclose(copy->action_mean(states.select(1, 0), torch::zeros({4, 2})),
+                              vae->action_mean(states.select(1, 0), torch::zeros({4, 2}))));
+}
+
+TEST_F(TrajectoryVaeTest, OverfitsTwoTrajectoriesAndSeparatesTheirEmbeddings) {
+  TrajectoryVae vae(tiny_config());
+  auto [states, actions] = testing::toy_trajectories(2, 20, 4, 2, 9);
+  vae->fit_normalization(states, actions);
+  torch::optim::Adam opt(vae->parameters(), torch::optim::AdamOptions(1e-2));
+  const double initial = vae->loss(states, actions).total.item<double>();
+  double final_loss = 0;
+  for (int step = 0; step < 300; ++step) {
+    opt.zero_grad();
+    auto loss = vae->loss(states, actions);
+    loss.total.backward();
+    opt.step();
+    final_loss = loss.total.item<double>();
+  }
+  ASSERT_GT(initial, 0.0);
+  EXPECT_LT(final_loss, 0.2 * initial) << "initial " << initial;
+  // Each trajectory's posterior mean lies several posterior stds away from the other's.
+  torch::NoGradGuard no_grad;
+  const auto q = vae->encode(states);
+  const auto gap = (q.mean[0] - q.mean[1]).abs();
+  const auto spread = torch::max(q.log_std[0].exp(), q.log_std[1].exp());
+  EXPECT_GT((gap / spread).max().item<double>(), 3.0)
+      << "means " << q.mean << " stds " << q.log_std.exp();
+}
+
+TEST_F(TrajectoryVaeTest, RolloutHelpersWorkInRawUnits) {
+  TrajectoryVae vae(tiny_config());
+  const auto [states, actions] = testing::toy_trajectories(3, 4, 4, 2, 10);
+  vae->fit_normalization(states, actions);
+  const auto z = torch::zeros({3, 2});
+  EXPECT_EQ(vae->action_mean(states.select(1, 0), z).sizes(), torch::IntArrayRef({3, 2}));
+  auto gen = at::detail::createCPUGenerator(1);
+  const auto next = vae->sample_next_state(states.select(1, 0), z, gen);
+  EXPECT_EQ(next.sizes(), torch::IntArrayRef({3, 4}));
+  EXPECT_TRUE(torch::isfinite(next).all().item<bool>());
+}
+
+}  // namespace
+}  // namespace vaegail::vae

@@ -1,0 +1,46 @@
+// `vaegail bench vae`: training throughput of the trajectory VAE against this machine's
+// matrix-multiply ceiling, measured in one run (see README.md for the recorded figures).
+#pragma once
+
+#include <string>
+
+#include "vae/vae_config.h"
+
+namespace vaegail::vae {
+
+struct VaeBenchOptions {
+  VaeConfig config = VaeConfig::walker();
+  int batch = 32;          // trajectories per training step
+  int steps = 400;         // steps per trajectory (the walker's 10 s episodes)
+  double seconds = 3.0;    // measuring time per part (at least one timed run each)
+  int epoch_episodes = 1200;  // the paper-scale walker set the epoch time is projected for
+  int epoch_steps = 400;
+  double epoch_target_seconds = 120.0;  // the bar
+};
+
+struct VaeBenchResult {
+  int threads = 1;
+  double sgemm_model_gflops = 0;   // torch::mm [B*T*D, 2C] x [2C, 2C]: the state decoder's GEMM
+  double sgemm_square_gflops = 0;  // torch::mm 1024^3: the machine's ceiling
+  double step_seconds = 0;         // a whole training step: forward, backward, Adam
+  // forward + backward of each part alone on the same batch (they do not sum to the step
+  // exactly: the step adds the loss glue and Adam)
+  double encoder_seconds = 0, action_decoder_seconds = 0, state_decoder_seconds = 0;
+  double state_decoder_gflops = 0;  // analytic matmul FLOPs / state_decoder_seconds
+  double reference_state_decoder_seconds = 0;  // the conv1d implementation, same batch
+  double peak_rss_mb = 0;
+
+  double steps_per_second(const VaeBenchOptions& o) const { return o.batch * o.steps / step_seconds; }
+  double epoch_seconds(const VaeBenchOptions& o) const {
+    return o.epoch_episodes * static_cast<double>(o.epoch_steps) / steps_per_second(o);
+  }
+};
+
+VaeBenchResult run_vae_bench(const VaeBenchOptions& options);
+std::string format_vae_bench(const VaeBenchOptions& options, const VaeBenchResult& result);
+
+// Matmul FLOPs of one forward + backward of the state decoder on `positions` (x_t, x_{t+1})
+// pairs (backward counted as twice the forward).
+double state_decoder_flops(const VaeConfig& config, double positions);
+
+}  // namespace vaegail::vae

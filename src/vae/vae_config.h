@@ -1,0 +1,59 @@
+// Sizes and training settings of the trajectory VAE (paper section 3.1, Table 1).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace vaegail::vae {
+
+struct VaeConfig {
+  std::string name = "walker";
+  int state_dim = 18;   // D: components of one state vector x_t
+  int action_dim = 6;   // A: components of one action a_t
+
+  // Table 1.
+  int lstm_hidden = 200;                    // per direction, both layers of the BiLSTM encoder
+  int latent_dim = 20;                      // z
+  std::vector<int> action_hidden{200, 200};  // MLP sizes of the action decoder
+  int wavenet_channels = 32;                // C: residual channels of the state decoder
+  int wavenet_layers = 6;                   // dilated causal layers
+
+  // Not in the paper. 5 Gaussians per state component: the paper only says "a mixture of
+  // Gaussians"; 5 is enough for the multi-modal one-step transitions of contact dynamics
+  // (foot on / off the ground) while keeping the head (3K outputs) small next to C = 32.
+  int mixture_components = 5;
+  // A learned per-component position bias in every gated layer; without it a WaveNet with
+  // only global conditioning cannot tell component k from k' (see state_decoder.h).
+  bool position_embedding = true;
+
+  // Training. The paper gives no VAE optimiser settings; these are Adam's usual ones.
+  double learning_rate = 1e-4;
+  int batch_size = 32;
+  // Weight of KL(q(z|x) || N(0, I)) in the loss; 1 is the paper's objective (the ELBO).
+  double kl_weight = 1.0;
+
+  // The named presets of Table 1. state_dim / action_dim depend on the environment's
+  // observation and action spaces; the walker's are this project's 18 and 6.
+  static VaeConfig walker(int state_dim = 18, int action_dim = 6);
+  static VaeConfig arm(int state_dim, int action_dim);       // "Jaco" in Table 1
+  static VaeConfig humanoid(int state_dim, int action_dim);
+  // "walker" | "arm" | "jaco" | "humanoid"; throws std::invalid_argument otherwise.
+  static VaeConfig preset(const std::string& name, int state_dim, int action_dim);
+
+  // Throws std::invalid_argument naming the first bad field.
+  void validate() const;
+
+  std::string to_json() const;
+  // Missing keys keep the value of `defaults` (by default the walker preset); unknown keys
+  // throw, so a typo in a config file is an error and not a silent default.
+  static VaeConfig from_json(const std::string& text, const VaeConfig& defaults);
+  static VaeConfig from_json(const std::string& text);
+  void save(const std::string& path) const;  // atomically
+  static VaeConfig load(const std::string& path, const VaeConfig& defaults);
+  static VaeConfig load(const std::string& path);
+
+  bool operator==(const VaeConfig& other) const;
+  bool operator!=(const VaeConfig& other) const { return !(*this == other); }
+};
+
+}  // namespace vaegail::vae

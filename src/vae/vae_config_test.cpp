@@ -1,0 +1,77 @@
+#include "vae/vae_config.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+namespace vaegail::vae {
+namespace {
+
+TEST(VaeConfigTest, PresetsAreTable1) {
+  const auto w = VaeConfig::walker();
+  EXPECT_EQ(w.state_dim, 18);
+  EXPECT_EQ(w.action_dim, 6);
+  EXPECT_EQ(w.lstm_hidden, 200);
+  EXPECT_EQ(w.latent_dim, 20);
+  EXPECT_EQ(w.action_hidden, (std::vector<int>{200, 200}));
+  EXPECT_EQ(w.wavenet_channels, 32);
+  EXPECT_EQ(w.wavenet_layers, 6);
+
+  const auto a = VaeConfig::arm(24, 9);
+  EXPECT_EQ(a.state_dim, 24);
+  EXPECT_EQ(a.lstm_hidden, 500);
+  EXPECT_EQ(a.latent_dim, 30);
+  EXPECT_EQ(a.action_hidden, (std::vector<int>{400, 300, 200}));
+  EXPECT_EQ(a.wavenet_channels, 32);
+  EXPECT_EQ(a.wavenet_layers, 10);
+
+  const auto h = VaeConfig::humanoid(137, 56);
+  EXPECT_EQ(h.lstm_hidden, 500);
+  EXPECT_EQ(h.latent_dim, 30);
+  EXPECT_EQ(h.action_hidden, (std::vector<int>{400, 300, 200}));
+  EXPECT_EQ(h.wavenet_layers, 14);
+
+  EXPECT_EQ(VaeConfig::preset("jaco", 24, 9), a);
+  EXPECT_THROW(VaeConfig::preset("cheetah", 1, 1), std::invalid_argument);
+  EXPECT_EQ(w.mixture_components, 5);
+  EXPECT_EQ(w.kl_weight, 1.0);
+}
+
+TEST(VaeConfigTest, JsonRoundTrip) {
+  auto c = VaeConfig::humanoid(130, 56);
+  c.mixture_components = 3;
+  c.position_embedding = false;
+  c.learning_rate = 3e-4;
+  c.kl_weight = 0.5;
+  EXPECT_EQ(VaeConfig::from_json(c.to_json()), c);
+}
+
+TEST(VaeConfigTest, MissingKeysKeepDefaultsUnknownKeysThrow) {
+  const auto c = VaeConfig::from_json(R"({"latent_dim": 7, "action_hidden": [3, 4]})");
+  EXPECT_EQ(c.latent_dim, 7);
+  EXPECT_EQ(c.action_hidden, (std::vector<int>{3, 4}));
+  EXPECT_EQ(c.lstm_hidden, 200);
+  const auto arm = VaeConfig::from_json(R"({"state_dim": 5})", VaeConfig::arm(9, 2));
+  EXPECT_EQ(arm.lstm_hidden, 500);
+  EXPECT_EQ(arm.state_dim, 5);
+  EXPECT_THROW(VaeConfig::from_json(R"({"latnet_dim": 7})"), std::invalid_argument);
+  EXPECT_THROW(VaeConfig::from_json(R"({"latent_dim": "seven"})"), std::invalid_argument);
+  EXPECT_THROW(VaeConfig::from_json(R"({"latent_dim": 0})"), std::invalid_argument);
+  EXPECT_THROW(VaeConfig::from_json("not json"), std::invalid_argument);
+}
+
+TEST(VaeConfigTest, SaveAndLoadFile) {
+  const auto path = (std::filesystem::temp_directory_path() /
+                     ("vae_config_test_" + std::to_string(::getpid()) + ".json"))
+                        .string();
+  const auto c = VaeConfig::arm(20, 7);
+  c.save(path);
+  EXPECT_EQ(VaeConfig::load(path), c);
+  std::remove(path.c_str());
+  EXPECT_THROW(VaeConfig::load(path), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace vaegail::vae

@@ -1,0 +1,269 @@
+#include "vae/vae_trainer.h"
+
+#include <ATen/CPUGeneratorImpl.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include "util/atomic_file.h"
+#include "util/csv_log.h"
+#include "util/progress.h"
+#include "util/rng.h"
+#include "vae/malloc_tuning.h"
+
+namespace vaegail::vae {
+
+namespace {
+
+// Random streams, each derived from (seed, stream) and then per epoch / batch.
+enum Stream : uint64_t { kInit = 1, kShuffle = 2, kNoise = 3, kEval = 4 };
+
+uint64_t stream_seed(uint64_t seed, Stream stream, uint64_t a, uint64_t b = 0) {
+  return derive_seed(derive_seed(derive_seed(seed, stream), a), b);
+}
+
+torch::Tensor standard_normal(int64_t rows, int64_t cols, uint64_t seed,
+                              const torch::Device& device) {
+  auto gen = at::detail::createCPUGenerator(seed);
+  return at::randn({rows, cols}, gen, torch::TensorOptions(torch::kFloat)).to(device);
+}
+
+std::vector<std::string> metric_columns() {
+  return {"epoch",          "train_loss", "train_action_nll", "train_state_nll", "train_kl",
+          "val_loss",       "val_action_nll", "val_state_nll", "val_kl",         "seconds"};
+}
+
+void accumulate(LossTerms& sum, const VaeLoss& loss, double weight) {
+  sum.total += weight * loss.total.item<double>();
+  sum.action_nll += weight * loss.action_nll.item<double>();
+  sum.state_nll += weight * loss.state_nll.item<double>();
+  sum.kl += weight * loss.kl.item<double>();
+}
+
+// A run killed after writing an epoch's row but before its checkpoint redoes that epoch on
+// resume; dropping the rows past the checkpoint keeps one row per epoch.
+void drop_metric_rows_after(const std::string& path, int epoch) {
+  if (!std::filesystem::exists(path)) return;
+  std::istringstream in(read_file(path));
+  std::string kept, line;
+  for (bool header = true; std::getline(in, line); header = false)
+    if (header || std::stod(line.substr(0, line.find(','))) <= epoch) kept += line + "\n";
+  write_file_atomically(path, kept);
+}
+
+LossTerms scaled(LossTerms t, double factor) {
+  t.total *= factor;
+  t.action_nll *= factor;
+  t.state_nll *= factor;
+  t.kl *= factor;
+  return t;
+}
+
+}  // namespace
+
+TrajectoryDataset TrajectoryDataset::select(const torch::Tensor& index,
+                                            const torch::Device& device) const {
+  const auto i = index.to(states.device());
+  return {states.index_select(0, i).to(device), actions.index_select(0, i).to(device),
+          mask.defined() ? mask.index_select(0, i).to(device) : torch::Tensor()};
+}
+
+void TrajectoryDataset::validate(const VaeConfig& c) const {
+  auto fail = [](const std::string& why) { throw std::invalid_argument("dataset: " + why); };
+  if (!states.defined() || !actions.defined()) fail("states and actions are required");
+  if (states.dim() != 3 || states.size(2) != c.state_dim)
+    fail("states must be [M, T+1, " + std::to_string(c.state_dim) + "]");
+  if (actions.dim() != 3 || actions.size(2) != c.action_dim)
+    fail("actions must be [M, T, " + std::to_string(c.action_dim) + "]");
+  if (actions.size(0) != states.size(0) || states.size(1) != actions.size(1) + 1)
+    fail("states [M, T+1, D] and actions [M, T, A] disagree on M or T");
+  if (mask.defined() && (mask.dim() != 2 || mask.size(0) != actions.size(0) ||
+                         mask.size(1) != actions.size(1)))
+    fail("mask must be [M, T]");
+  if (mask.defined()) mask_lengths(mask);  // prefix rows, none empty
+}
+
+VaeTrainer::VaeTrainer(const VaeConfig& config, TrainerOptions options, TrajectoryDataset train,
+                       TrajectoryDataset val)
+    : config_(config), options_(std::move(options)), train_(std::move(train)),
+      val_(std::move(val)) {
+  retain_freed_memory();
+  config_.validate();
+  if (options_.run_dir.empty()) throw std::invalid_argument("VaeTrainer: run_dir is required");
+  train_.validate(config_);
+  if (train_.size() == 0) throw std::invalid_argument("VaeTrainer: empty training set");
+  if (val_.size() > 0) val_.validate(config_);
+
+  torch::manual_seed(stream_seed(options_.seed, kInit, 0));
+  model_ = TrajectoryVae(config_);
+  model_->fit_normalization(train_.states, train_.actions, train_.mask);
+  model_->to(options_.device);
+  optimizer_ = std::make_unique<torch::optim::Adam>(
+      model_->parameters(), torch::optim::AdamOptions(config_.learning_rate));
+
+  std::filesystem::create_directories(std::filesystem::path(options_.run_dir) / "checkpoints");
+  if (std::filesystem::exists(checkpoint_path())) load_checkpoint(checkpoint_path());
+  drop_metric_rows_after(metrics_path(), epoch_);
+  config_.save((std::filesystem::path(options_.run_dir) / "config.json").string());
+}
+
+std::string VaeTrainer::checkpoint_path() const {
+  return (std::filesystem::path(options_.run_dir) / "checkpoints" / "latest.pt").string();
+}
+
+std::string VaeTrainer::metrics_path() const {
+  return (std::filesystem::path(options_.run_dir) / "metrics.csv").string();
+}
+
+std::vector<EpochMetrics> VaeTrainer::train() {
+  std::vector<EpochMetrics> out;
+  while (epoch_ < options_.epochs) out.push_back(train_epoch());
+  return out;
+}
+
+EpochMetrics VaeTrainer::train_epoch() {
+  const auto start = std::chrono::steady_clock::now();
+  const int e = epoch_ + 1;
+  const int64_t M = train_.size(), bs = config_.batch_size;
+
+  // Fisher-Yates with this epoch's stream.
+  std::vector<int64_t> order(M);
+  for (int64_t i = 0; i < M; ++i) order[i] = i;
+  Rng rng(stream_seed(options_.seed, kShuffle, e));
+  for (int64_t i = M - 1; i > 0; --i)
+    std::swap(order[i], order[rng.next() % static_cast<uint64_t>(i + 1)]);
+  const auto perm = torch::tensor(order, torch::kLong);
+
+  std::unique_ptr<Progress> progress;
+  const int64_t batches = (M + bs - 1) / bs;
+  if (options_.progress)
+    progress = std::make_unique<Progress>(
+        "vae epoch " + std::to_string(e) + "/" + std::to_string(options_.epochs), batches, "batch");
+
+  model_->train();
+  LossTerms sum;
+  for (int64_t b = 0; b < batches; ++b) {
+    const int64_t n = std::min(bs, M - b * bs);
+    const auto batch = train_.select(perm.narrow(0, b * bs, n), options_.device);
+    const auto noise = standard_normal(n, config_.latent_dim, stream_seed(options_.seed, kNoise, e, b),
+                                       options_.device);
+    optimizer_->zero_grad();
+    const auto loss = model_->loss(batch.states, batch.actions, batch.mask, noise);
+    loss.total.backward();
+    optimizer_->step();
+    accumulate(sum, loss, static_cast<double>(n));
+    if (progress) {
+      char status[64];
+      std::snprintf(status, sizeof status, "loss %.4g", loss.total.item<double>());
+      progress->set_status(status);
+      progress->advance();
+    }
+  }
+  if (progress) progress->finish();
+  epoch_ = e;
+
+  EpochMetrics m;
+  m.epoch = e;
+  m.train = scaled(sum, 1.0 / static_cast<double>(M));
+  const double nan = std::nan("");
+  m.val = val_.size() > 0 ? evaluate(val_) : LossTerms{nan, nan, nan, nan};
+  m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // The row first, then the checkpoint: a run killed between the two redoes the epoch on
+  // resume (reproducibly) and replaces the row, rather than losing it.
+  CsvLog log(metrics_path(), metric_columns());
+  log.write({static_cast<double>(e), m.train.total, m.train.action_nll, m.train.state_nll,
+             m.train.kl, m.val.total, m.val.action_nll, m.val.state_nll, m.val.kl, m.seconds});
+  save_checkpoint(checkpoint_path());
+  return m;
+}
+
+LossTerms VaeTrainer::evaluate(const TrajectoryDataset& data) {
+  torch::NoGradGuard no_grad;
+  model_->eval();
+  const int64_t M = data.size(), bs = std::max(1, options_.eval_batch_size);
+  LossTerms sum;
+  for (int64_t b = 0; b * bs < M; ++b) {
+    const int64_t n = std::min(bs, M - b * bs);
+    const auto batch = data.select(torch::arange(b * bs, b * bs + n), options_.device);
+    const auto noise = standard_normal(n, config_.latent_dim,
+                                       stream_seed(options_.seed, kEval, epoch_, b), options_.device);
+    accumulate(sum, model_->loss(batch.states, batch.actions, batch.mask, noise),
+               static_cast<double>(n));
+  }
+  model_->train();
+  return scaled(sum, 1.0 / static_cast<double>(std::max<int64_t>(1, M)));
+}
+
+void VaeTrainer::save_checkpoint(const std::string& path) {
+  torch::serialize::OutputArchive archive, model_archive, optimizer_archive;
+  model_->save(model_archive);
+  optimizer_->save(optimizer_archive);
+  archive.write("model", model_archive);
+  archive.write("optimizer", optimizer_archive);
+  archive.write("epoch", c10::IValue(static_cast<int64_t>(epoch_)));
+  archive.write("seed", c10::IValue(static_cast<int64_t>(options_.seed)));
+  archive.write("config", c10::IValue(config_.to_json()));
+  write_atomically(path, [&](const std::string& tmp) { archive.save_to(tmp); });
+}
+
+void VaeTrainer::load_checkpoint(const std::string& path) {
+  torch::serialize::InputArchive archive, model_archive, optimizer_archive;
+  archive.load_from(path, options_.device);
+  c10::IValue config_json, epoch, seed;
+  archive.read("config", config_json);
+  if (VaeConfig::from_json(config_json.toStringRef()) != config_)
+    throw std::invalid_argument(path + ": checkpoint was trained with a different VaeConfig");
+  archive.read("seed", seed);
+  if (static_cast<uint64_t>(seed.toInt()) != options_.seed)
+    throw std::invalid_argument(path + ": checkpoint was trained with seed " +
+                                std::to_string(static_cast<uint64_t>(seed.toInt())));
+  archive.read("model", model_archive);
+  archive.read("optimizer", optimizer_archive);
+  archive.read("epoch", epoch);
+  model_->load(model_archive);
+  optimizer_->load(optimizer_archive);
+  epoch_ = static_cast<int>(epoch.toInt());
+}
+
+TrajectoryVae load_trained_vae(const std::string& checkpoint_path, const torch::Device& device) {
+  torch::serialize::InputArchive archive, model_archive;
+  archive.load_from(checkpoint_path, device);
+  c10::IValue config_json;
+  archive.read("config", config_json);
+  TrajectoryVae model(VaeConfig::from_json(config_json.toStringRef()));
+  archive.read("model", model_archive);
+  model->load(model_archive);
+  model->to(device);
+  return model;
+}
+
+std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model, const torch::Tensor& states,
+                                               const torch::Tensor& step_mask, int64_t batch_size) {
+  torch::NoGradGuard no_grad;
+  const auto device = model->state_decoder()->parameters().front().device();
+  std::vector<torch::Tensor> mus, sigmas;
+  const int64_t M = states.size(0), bs = std::max<int64_t>(1, batch_size);
+  for (int64_t b = 0; b < M; b += bs) {
+    const int64_t n = std::min(bs, M - b);
+    const auto s = states.narrow(0, b, n).to(device);
+    const auto m = step_mask.defined()
+                       ? state_mask_from_step_mask(step_mask.narrow(0, b, n).to(device))
+                       : torch::Tensor();
+    const auto q = model->encode(s, m);
+    mus.push_back(q.mean.cpu());
+    sigmas.push_back(q.log_std.exp().cpu());
+  }
+  return {torch::cat(mus), torch::cat(sigmas)};
+}
+
+std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model, const TrajectoryDataset& data,
+                                               int64_t batch_size) {
+  return encode(model, data.states, data.mask, batch_size);
+}
+
+}  // namespace vaegail::vae

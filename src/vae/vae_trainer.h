@@ -1,0 +1,103 @@
+// Training loop of the trajectory VAE: epochs of shuffled minibatches over an in-memory
+// dataset, Adam, a validation pass per epoch, metrics as CSV, atomic checkpoints, resume.
+//
+// Run directory layout (created as needed):
+//   run_dir/config.json                 the VaeConfig
+//   run_dir/metrics.csv                 one row per epoch: every loss term, train and val
+//   run_dir/checkpoints/latest.pt       model + optimizer + epoch + seed, written atomically
+//
+// Reproducibility: every random stream is derived from (seed, epoch, batch) with
+// util/rng.h's derive_seed: the weight initialisation, the epoch's shuffle and each batch's
+// reparameterisation noise (drawn on the CPU, then moved to the device). The RNG state of a
+// checkpoint is therefore just (seed, epoch), and a run resumed from epoch e reproduces the
+// uninterrupted run exactly (same thread count, CPU).
+#pragma once
+
+#include <torch/torch.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "vae/trajectory_vae.h"
+#include "vae/vae_config.h"
+
+namespace vaegail::vae {
+
+// M trajectories: states [M, T+1, D], actions [M, T, A], mask [M, T] (optional).
+struct TrajectoryDataset {
+  torch::Tensor states, actions, mask;
+  int64_t size() const { return states.defined() ? states.size(0) : 0; }
+  // The rows `index` [K] (int64), on `device`.
+  TrajectoryDataset select(const torch::Tensor& index, const torch::Device& device) const;
+  void validate(const VaeConfig& config) const;  // throws std::invalid_argument
+};
+
+struct TrainerOptions {
+  std::string run_dir;        // required
+  int epochs = 100;           // train() stops after this many epochs in total
+  uint64_t seed = 0;
+  torch::Device device = torch::kCPU;
+  bool progress = true;       // a progress bar on stderr
+  int eval_batch_size = 64;   // batch size of validation passes
+};
+
+// Batch-mean loss terms of a pass over a dataset, weighted by batch size.
+struct LossTerms {
+  double total = 0, action_nll = 0, state_nll = 0, kl = 0;
+};
+
+struct EpochMetrics {
+  int epoch = 0;  // 1-based
+  LossTerms train, val;
+  double seconds = 0;
+};
+
+class VaeTrainer {
+ public:
+  // Builds the model (seeded), fits its normalisation on `train`, and resumes from
+  // run_dir/checkpoints/latest.pt when that exists (its config must equal `config`).
+  VaeTrainer(const VaeConfig& config, TrainerOptions options, TrajectoryDataset train,
+             TrajectoryDataset val);
+
+  // Runs epochs until options.epochs; returns the metrics of the epochs it ran.
+  std::vector<EpochMetrics> train();
+  EpochMetrics train_epoch();
+  // Loss terms over a dataset (no gradient; noise from derive_seed(seed, epoch) so values
+  // are comparable between calls in one epoch).
+  LossTerms evaluate(const TrajectoryDataset& data);
+
+  void save_checkpoint(const std::string& path);
+  void load_checkpoint(const std::string& path);
+  std::string checkpoint_path() const;
+  std::string metrics_path() const;
+
+  int epoch() const { return epoch_; }  // epochs completed
+  TrajectoryVae& model() { return model_; }
+  torch::optim::Adam& optimizer() { return *optimizer_; }
+
+ private:
+  VaeConfig config_;
+  TrainerOptions options_;
+  TrajectoryDataset train_, val_;
+  TrajectoryVae model_{nullptr};
+  std::unique_ptr<torch::optim::Adam> optimizer_;
+  int epoch_ = 0;
+};
+
+// (mu, sigma) [M, Z] of q(z | states) for every trajectory, in batches, without gradient,
+// returned on the CPU. states [M, T+1, D] raw; step_mask [M, T] optional (as in the dataset).
+std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model, const torch::Tensor& states,
+                                               const torch::Tensor& step_mask = {},
+                                               int64_t batch_size = 64);
+std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model,
+                                               const TrajectoryDataset& data,
+                                               int64_t batch_size = 64);
+
+// Loads the model alone from a trainer checkpoint (config read from the checkpoint).
+TrajectoryVae load_trained_vae(const std::string& checkpoint_path,
+                               const torch::Device& device = torch::kCPU);
+
+}  // namespace vaegail::vae

@@ -1,0 +1,163 @@
+#include "vae/vae_trainer.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "util/atomic_file.h"
+#include "vae/toy_trajectories.h"
+
+namespace vaegail::vae {
+namespace {
+
+namespace fs = std::filesystem;
+
+VaeConfig tiny_config() {
+  VaeConfig c = VaeConfig::walker(3, 2);
+  c.lstm_hidden = 8;
+  c.latent_dim = 2;
+  c.action_hidden = {16};
+  c.wavenet_channels = 4;
+  c.wavenet_layers = 2;
+  c.mixture_components = 2;
+  c.batch_size = 3;
+  c.learning_rate = 3e-3;
+  return c;
+}
+
+TrajectoryDataset toy_dataset(int64_t M, uint64_t seed, bool ragged) {
+  auto [states, actions] = testing::toy_trajectories(M, 7, 3, 2, seed);
+  TrajectoryDataset d{states, actions, {}};
+  if (ragged) {
+    d.mask = torch::ones({M, 7}, torch::kBool);
+    d.mask.index_put_({0, torch::indexing::Slice(4)}, false);
+  }
+  return d;
+}
+
+class VaeTrainerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    torch::set_num_threads(1);
+    root_ = fs::temp_directory_path() /
+            ("vae_trainer_test_" + std::to_string(::getpid()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  TrainerOptions options(const std::string& name, int epochs) const {
+    TrainerOptions o;
+    o.run_dir = (root_ / name).string();
+    o.epochs = epochs;
+    o.seed = 42;
+    o.progress = false;
+    return o;
+  }
+
+  fs::path root_;
+};
+
+int count_lines(const fs::path& p) {
+  std::ifstream in(p);
+  int n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
+
+TEST_F(VaeTrainerTest, WritesMetricsConfigAndCheckpoint) {
+  VaeTrainer trainer(tiny_config(), options("run", 2), toy_dataset(7, 1, true), toy_dataset(4, 2, false));
+  const auto metrics = trainer.train();
+  ASSERT_EQ(metrics.size(), 2u);
+  EXPECT_EQ(metrics[1].epoch, 2);
+  EXPECT_TRUE(std::isfinite(metrics[1].val.total));
+  EXPECT_NEAR(metrics[1].train.total,
+              metrics[1].train.action_nll + metrics[1].train.state_nll + metrics[1].train.kl, 1e-3);
+  const fs::path dir = root_ / "run";
+  EXPECT_EQ(count_lines(dir / "metrics.csv"), 3);  // header + 2 epochs
+  std::ifstream csv(dir / "metrics.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header,
+            "epoch,train_loss,train_action_nll,train_state_nll,train_kl,val_loss,val_action_nll,"
+            "val_state_nll,val_kl,seconds");
+  EXPECT_EQ(VaeConfig::load((dir / "config.json").string()), tiny_config());
+  EXPECT_TRUE(fs::exists(dir / "checkpoints" / "latest.pt"));
+  for (const auto& entry : fs::directory_iterator(dir / "checkpoints"))
+    EXPECT_EQ(entry.path().filename(), "latest.pt") << "left behind: " << entry.path();
+}
+
+TEST_F(VaeTrainerTest, TrainingReducesTheLoss) {
+  VaeTrainer trainer(tiny_config(), options("run", 15), toy_dataset(9, 3, false), {});
+  const auto metrics = trainer.train();
+  EXPECT_LT(metrics.back().train.total, metrics.front().train.total - 5.0);
+  EXPECT_TRUE(std::isnan(metrics.back().val.total));
+}
+
+TEST_F(VaeTrainerTest, ResumeReproducesTheUninterruptedRun) {
+  const auto train = toy_dataset(8, 4, true), val = toy_dataset(3, 5, false);
+  VaeTrainer straight(tiny_config(), options("straight", 3), train, val);
+  const auto full = straight.train();
+  {
+    VaeTrainer first(tiny_config(), options("resumed", 1), train, val);
+    first.train();
+  }
+  // As if killed after writing epoch 2's row but before its checkpoint.
+  std::ofstream((root_ / "resumed" / "metrics.csv").string(), std::ios::app) << "2,1,1,1,1,1,1,1,1,1\n";
+  VaeTrainer resumed(tiny_config(), options("resumed", 3), train, val);
+  EXPECT_EQ(resumed.epoch(), 1);
+  const auto rest = resumed.train();
+  ASSERT_EQ(rest.size(), 2u);
+  EXPECT_EQ(rest.back().train.total, full.back().train.total);
+  EXPECT_EQ(rest.back().val.total, full.back().val.total);
+  const auto a = straight.model()->named_parameters(), b = resumed.model()->named_parameters();
+  for (const auto& p : a) EXPECT_TRUE(torch::equal(p.value(), b[p.key()])) << p.key();
+  // One row per epoch, equal to the uninterrupted run's but for the last column (seconds).
+  const auto without_seconds = [](const std::string& csv) {
+    std::istringstream in(csv);
+    std::string out;
+    for (std::string line; std::getline(in, line);) out += line.substr(0, line.rfind(',')) + "\n";
+    return out;
+  };
+  EXPECT_EQ(without_seconds(read_file((root_ / "resumed" / "metrics.csv").string())),
+            without_seconds(read_file((root_ / "straight" / "metrics.csv").string())));
+  EXPECT_EQ(count_lines(root_ / "resumed" / "metrics.csv"), 4);
+}
+
+TEST_F(VaeTrainerTest, ResumeRefusesAnotherConfig) {
+  { VaeTrainer(tiny_config(), options("run", 1), toy_dataset(4, 6, false), {}).train(); }
+  auto other = tiny_config();
+  other.latent_dim = 3;
+  EXPECT_THROW(VaeTrainer(other, options("run", 2), toy_dataset(4, 6, false), {}),
+               std::invalid_argument);
+}
+
+TEST_F(VaeTrainerTest, EncodeAndLoadTrainedModel) {
+  const auto data = toy_dataset(5, 7, true);
+  VaeTrainer trainer(tiny_config(), options("run", 1), data, {});
+  trainer.train();
+  const auto [mu, sigma] = encode(trainer.model(), data, 2);
+  EXPECT_EQ(mu.sizes(), torch::IntArrayRef({5, 2}));
+  EXPECT_GT(sigma.min().item<double>(), 0.0);
+  auto loaded = load_trained_vae(trainer.checkpoint_path());
+  const auto [mu2, sigma2] = encode(loaded, data);
+  EXPECT_TRUE(torch::allclose(mu, mu2, 1e-6, 1e-6));
+  EXPECT_TRUE(torch::allclose(sigma, sigma2, 1e-6, 1e-6));
+}
+
+TEST_F(VaeTrainerTest, RejectsMalformedData) {
+  auto bad = toy_dataset(4, 8, false);
+  bad.actions = bad.actions.narrow(1, 0, 5);
+  EXPECT_THROW(VaeTrainer(tiny_config(), options("run", 1), bad, {}), std::invalid_argument);
+  auto holes = toy_dataset(4, 8, false);
+  holes.mask = torch::ones({4, 7}, torch::kBool);
+  holes.mask.index_put_({1, 2}, false);
+  EXPECT_THROW(VaeTrainer(tiny_config(), options("run", 1), holes, {}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vaegail::vae
