@@ -16,8 +16,12 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] { torch::set_num_threads(torch_threads); });
   vaegail::cli::add_env_commands(app);
   vaegail::cli::add_data_commands(app);
+  vaegail::cli::add_expert_commands(app);
   vaegail::cli::add_bench_commands(app);
+  vaegail::cli::add_vae_commands(app);  // after bench: adds `bench vae`
   vaegail::cli::add_quickstart_command(app);
+  vaegail::cli::add_plot_commands(app);
+  vaegail::cli::add_gail_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

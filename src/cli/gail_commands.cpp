@@ -1,0 +1,157 @@
+// `vaegail gail train` (the adversarial stage, diverse or plain GAIL) and `vaegail bc train`
+// (the behaviour-cloning baseline).
+#include <torch/torch.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "cli/commands.h"
+#include "env/registry.h"
+#include "gail/behavior_cloning.h"
+#include "gail/diverse_gail.h"
+#include "util/progress.h"
+#include "vae/vae_trainer.h"
+
+namespace vaegail::cli {
+
+namespace {
+
+void require_device(const std::string& device) {
+  if (device == "cuda" && !torch::cuda::is_available())
+    throw std::invalid_argument("--device cuda: this LibTorch build has no CUDA or sees no GPU");
+}
+
+CLI::Option* add_device(CLI::App& c, std::string& device) {
+  return c.add_option("--device", device, "where the networks run")
+      ->check(CLI::IsMember({"cpu", "cuda"}))->capture_default_str();
+}
+
+// The environment the demonstrations were recorded in, with episodes as long as the longest.
+std::unique_ptr<Env> demo_env(const DemoSet& demos) {
+  EnvRequest request;
+  request.task = demos.header.env_id;
+  for (const auto& e : demos.episodes) request.episode_length = std::max(request.episode_length, e.length());
+  return make_env(request);
+}
+
+// ---- gail train -----------------------------------------------------------------------
+struct GailFlags {
+  std::string mode = "diverse", demos, vae, run_dir;
+  GailOptions options;
+};
+
+void run_gail(GailFlags f) {
+  require_device(f.options.device);
+  f.options.mode = parse_gail_mode(f.mode);
+  f.options.demos_path = f.demos;
+  const bool diverse = f.options.mode == GailMode::Diverse;
+  if (diverse && f.vae.empty()) throw std::invalid_argument("--mode diverse needs --vae (RUN_DIR/checkpoints/latest.pt)");
+  if (!diverse && !f.vae.empty()) throw std::invalid_argument("--mode plain takes no --vae");
+  f.options.vae_path = f.vae;
+  const DemoSet demos = read_demos(f.demos);
+  vae::TrajectoryVae model{nullptr};
+  if (diverse) {
+    if (!std::filesystem::exists(f.vae)) throw std::invalid_argument(f.vae + ": no such VAE checkpoint");
+    model = vae::load_trained_vae(f.vae, torch::Device(f.options.device));
+  }
+  const auto env = demo_env(demos);
+  GailTrainer trainer(demos, model, *env, f.options, f.run_dir);
+  if (trainer.iteration() > 0) std::printf("resuming %s after iteration %d\n", f.run_dir.c_str(), trainer.iteration());
+  std::fflush(stdout);
+  Progress progress("gail " + f.mode, f.options.iterations, "it");
+  progress.set(trainer.iteration());
+  trainer.train([&](const GailMetrics& m) {
+    char status[160];
+    std::snprintf(status, sizeof status, "D acc %.2f/%.2f  reward %.2f  return %.1f  speed err %.2f  falls %.2f",
+                  m.demo_accuracy, m.policy_accuracy, m.gail_reward, m.env_return, m.speed_error, m.fall_rate);
+    progress.set_status(status);
+    progress.set(m.iteration);
+  });
+  progress.finish();
+  std::printf("%d/%d iterations\nmetrics: %s\ncheckpoint: %s\n", trainer.iteration(), f.options.iterations,
+              trainer.metrics_path().c_str(), trainer.checkpoint_path().c_str());
+}
+
+void add_gail_train(CLI::App& gail) {
+  auto f = std::make_shared<GailFlags>();
+  GailOptions& o = f->options;
+  CLI::App* c = gail.add_subcommand(
+      "train", "adversarial imitation (Algorithm 1); rerun with the same --run-dir to resume or extend");
+  c->add_option("--mode", f->mode, "diverse: VAE-conditioned policy and discriminator; plain: GAIL without z")
+      ->check(CLI::IsMember({"diverse", "plain"}))->capture_default_str();
+  c->add_option("--demos", f->demos, "demonstration file (.h5)")->required();
+  c->add_option("--vae", f->vae, "VAE trainer checkpoint (VAE_RUN/checkpoints/latest.pt); diverse mode");
+  c->add_option("--run-dir", f->run_dir, "config.json, metrics.csv, checkpoints/latest.pt")->required();
+  c->add_option("--iterations", o.iterations, "train until this many iterations in total (Table 3: 30000)")
+      ->check(CLI::Range(1, 1 << 30))->capture_default_str();
+  c->add_option("--minutes", o.minutes, "stop after this many minutes of this call (0: no limit)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  c->add_option("--envs", o.num_envs, "environments, one demonstration each per episode")
+      ->check(CLI::Range(1, 1 << 16))->capture_default_str();
+  c->add_option("--env-threads", o.env_threads, "threads stepping them")->check(CLI::Range(1, 256))->capture_default_str();
+  c->add_option("--steps-per-env", o.steps_per_env, "steps per environment per iteration (0: one episode)")
+      ->check(CLI::Range(0, 1 << 30))->capture_default_str();
+  c->add_option("--disc-steps", o.discriminator_steps, "discriminator Adam steps per iteration (Table 3)")
+      ->check(CLI::Range(0, 1 << 20))->capture_default_str();
+  c->add_option("--disc-lr", o.discriminator_learning_rate, "discriminator learning rate (Table 3)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--disc-state-indices", o.discriminator_state_indices,
+                "observation components the discriminator sees (default: all)");
+  c->add_option("--reward-clip", o.reward_clip, "upper bound of the reward -log(1 - D)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--max-kl", o.max_kl, "TRPO's bound on the mean KL per update")->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--seed", o.seed, "initialisation, demonstration draws, z, environments, noise")->capture_default_str();
+  add_device(*c, o.device);
+  c->callback([f] { run_gail(*f); });
+}
+
+// ---- bc train -------------------------------------------------------------------------
+struct BcFlags {
+  std::string demos, run_dir;
+  BcOptions options;
+};
+
+void run_bc(BcFlags f) {
+  require_device(f.options.device);
+  f.options.demos_path = f.demos;
+  const DemoSet demos = read_demos(f.demos);
+  Progress progress("bc", f.options.epochs, "epochs");
+  train_bc(demos, f.options, f.run_dir, [&](const BcEpoch& e) {
+    char status[80];
+    std::snprintf(status, sizeof status, "nll train %.3f  val %.3f", e.train_nll, e.val_nll);
+    progress.set_status(status);
+    progress.set(e.epoch);
+  });
+  progress.finish();
+  std::printf("metrics: %s/metrics.csv\ncheckpoint: %s/checkpoints/latest.pt\n", f.run_dir.c_str(), f.run_dir.c_str());
+}
+
+void add_bc_train(CLI::App& bc) {
+  auto f = std::make_shared<BcFlags>();
+  BcOptions& o = f->options;
+  CLI::App* c = bc.add_subcommand("train", "behaviour cloning: a Gaussian MLP policy by maximum likelihood, no latent");
+  c->add_option("--demos", f->demos, "demonstration file (.h5)")->required();
+  c->add_option("--run-dir", f->run_dir, "config.json, metrics.csv, checkpoints/latest.pt")->required();
+  c->add_option("--epochs", o.epochs, "train until this many epochs in total")->check(CLI::Range(1, 1 << 30))->capture_default_str();
+  c->add_option("--batch-size", o.batch_size, "(x, a) pairs per step")->check(CLI::Range(1, 1 << 24))->capture_default_str();
+  c->add_option("--lr", o.learning_rate, "Adam learning rate")->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--seed", o.seed, "initialisation, shuffling and the validation split")->capture_default_str();
+  add_device(*c, o.device);
+  c->callback([f] { run_bc(*f); });
+}
+
+}  // namespace
+
+void add_gail_commands(CLI::App& app) {
+  CLI::App* gail = app.add_subcommand("gail", "the adversarial stage: diverse GAIL and its plain baseline");
+  gail->require_subcommand(1);
+  add_gail_train(*gail);
+  CLI::App* bc = app.add_subcommand("bc", "the behaviour-cloning baseline");
+  bc->require_subcommand(1);
+  add_bc_train(*bc);
+}
+
+}  // namespace vaegail::cli

@@ -1,0 +1,108 @@
+#include "gail/discriminator.h"
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace vaegail {
+
+namespace {
+
+constexpr double kStdFloor = 1e-6;  // a constant component standardises to 0, not to NaN
+
+torch::Tensor bounds(const std::vector<double>& values, int act_dim, double fallback, const char* name) {
+  if (values.empty()) return torch::full({act_dim}, fallback, torch::kFloat32);
+  if (static_cast<int>(values.size()) != act_dim)
+    throw std::invalid_argument(std::string("Discriminator: ") + name + " has " + std::to_string(values.size()) +
+                                " values, the action " + std::to_string(act_dim));
+  return torch::tensor(values, torch::kFloat64).to(torch::kFloat32);
+}
+
+torch::Tensor selected_indices(const std::vector<int>& indices, int obs_dim) {
+  if (indices.empty()) return torch::arange(obs_dim, torch::kLong);
+  for (int i : indices)
+    if (i < 0 || i >= obs_dim)
+      throw std::invalid_argument("Discriminator: state index " + std::to_string(i) + " outside the observation (" +
+                                  std::to_string(obs_dim) + " components)");
+  return torch::tensor(std::vector<int64_t>(indices.begin(), indices.end()), torch::kLong);
+}
+
+// Binary cross-entropy from logits, labels 1 for demos and 0 for the policy, in the stable
+// softplus form: -log σ(l) = softplus(-l), -log(1 - σ(l)) = softplus(l).
+torch::Tensor bce(const torch::Tensor& demo_logits, const torch::Tensor& policy_logits) {
+  return torch::softplus(-demo_logits).mean() + torch::softplus(policy_logits).mean();
+}
+
+DiscriminatorStats stats_of(const torch::Tensor& loss, const torch::Tensor& demo_logits,
+                            const torch::Tensor& policy_logits) {
+  return {loss.item<double>(), (demo_logits > 0).to(torch::kFloat64).mean().item<double>(),
+          (policy_logits < 0).to(torch::kFloat64).mean().item<double>()};
+}
+
+}  // namespace
+
+Discriminator::Discriminator(const DiscriminatorOptions& o)
+    : obs_dim_(o.obs_dim), act_dim_(o.act_dim), latent_dim_(o.latent_dim) {
+  if (o.obs_dim < 1 || o.act_dim < 1 || o.latent_dim < 0)
+    throw std::invalid_argument("Discriminator: needs obs_dim, act_dim >= 1 and latent_dim >= 0");
+  const double inf = std::numeric_limits<double>::infinity();
+  state_indices_ = register_buffer("state_indices", selected_indices(o.state_indices, o.obs_dim));
+  action_low_ = register_buffer("action_low", bounds(o.action_low, o.act_dim, -inf, "action_low"));
+  action_high_ = register_buffer("action_high", bounds(o.action_high, o.act_dim, inf, "action_high"));
+  const int feature_dim = static_cast<int>(state_indices_.size(0)) + o.act_dim;
+  feature_mean_ = register_buffer("feature_mean", torch::zeros({feature_dim}));
+  feature_std_ = register_buffer("feature_std", torch::ones({feature_dim}));
+  net_ = register_module("net", std::make_shared<Mlp>(feature_dim + o.latent_dim, o.hidden, 1, o.activation));
+}
+
+torch::Tensor Discriminator::features(const torch::Tensor& observations, const torch::Tensor& actions) const {
+  const auto device = feature_mean_.device();
+  const auto state = observations.to(device, torch::kFloat32).index_select(-1, state_indices_);
+  const auto action = torch::max(torch::min(actions.to(device, torch::kFloat32), action_high_), action_low_);
+  return torch::cat({state, action}, -1);
+}
+
+void Discriminator::fit_normalization(const torch::Tensor& observations, const torch::Tensor& actions) {
+  torch::NoGradGuard no_grad;
+  const auto x = features(observations, actions).to(torch::kFloat64);
+  feature_mean_.copy_(x.mean(0));
+  feature_std_.copy_(x.std(0, /*unbiased=*/false).clamp_min(kStdFloor));
+}
+
+torch::Tensor Discriminator::forward(const torch::Tensor& observations, const torch::Tensor& actions,
+                                     const torch::Tensor& z) {
+  auto input = (features(observations, actions) - feature_mean_) / feature_std_;
+  if (latent_dim_ > 0) {
+    if (!z.defined() || z.dim() != 2 || z.size(1) != latent_dim_)
+      throw std::invalid_argument("Discriminator: expects z [B, " + std::to_string(latent_dim_) + "]");
+    input = torch::cat({input, z.to(input.device(), torch::kFloat32)}, -1);
+  }
+  return net_->forward(input).squeeze(-1);
+}
+
+DiscriminatorStats evaluate_discriminator(Discriminator& discriminator, const DiscriminatorData& demos,
+                                          const DiscriminatorData& policy) {
+  torch::NoGradGuard no_grad;
+  const auto demo_logits = discriminator.forward(demos), policy_logits = discriminator.forward(policy);
+  return stats_of(bce(demo_logits, policy_logits), demo_logits, policy_logits);
+}
+
+DiscriminatorTrainer::DiscriminatorTrainer(std::shared_ptr<Discriminator> discriminator, double learning_rate)
+    : discriminator_(std::move(discriminator)),
+      optimizer_(discriminator_->parameters(), torch::optim::AdamOptions(learning_rate)) {}
+
+DiscriminatorStats DiscriminatorTrainer::train(const DiscriminatorData& demos, const DiscriminatorData& policy,
+                                               int steps) {
+  DiscriminatorStats before;
+  for (int step = 0; step < steps; ++step) {
+    const auto demo_logits = discriminator_->forward(demos), policy_logits = discriminator_->forward(policy);
+    const auto loss = bce(demo_logits, policy_logits);
+    if (step == 0) before = stats_of(loss.detach(), demo_logits.detach(), policy_logits.detach());
+    optimizer_.zero_grad();
+    loss.backward();
+    optimizer_.step();
+  }
+  return steps > 0 ? before : evaluate_discriminator(*discriminator_, demos, policy);
+}
+
+}  // namespace vaegail

@@ -1,0 +1,344 @@
+#include "gail/diverse_gail.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <stdexcept>
+
+#include "gail/residual_policy.h"
+#include "gail/run_dir.h"
+#include "rl/rollout.h"
+#include "rl/trpo.h"
+#include "rl/update_batch.h"
+#include "util/atomic_file.h"
+#include "util/csv_log.h"
+#include "util/rng.h"
+#include "vae/demo_dataset.h"
+
+namespace vaegail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Random streams of one iteration, each derived from (seed, iteration, stream).
+enum Stream : std::uint64_t { kInit = 0, kDemoDraws, kCollect, kTrpo, kDemoSteps };
+
+std::uint64_t stream_seed(std::uint64_t seed, int iteration, Stream stream) {
+  return derive_seed(derive_seed(seed, static_cast<std::uint64_t>(iteration) + 1), stream);
+}
+
+// Options a resumed run may change: they do not alter what an iteration computes.
+const std::vector<std::string> kResumableKeys = {"iterations", "minutes", "device", "env_threads"};
+
+int index_of(const std::vector<std::string>& names, const std::string& name) {
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<int>(i);
+  return -1;
+}
+
+// Which training demonstration each step [T, N] of the rollout imitated: environment i's
+// episodes took started[i][0], [1], … in turn, the next one after each done step.
+torch::Tensor step_demonstrations(const std::vector<std::vector<int>>& started, const Rollout& rollout) {
+  const auto done = ((rollout.terminated + rollout.truncated) > 0).to(torch::kCPU).contiguous();
+  const int64_t T = done.size(0), N = done.size(1);
+  auto out = torch::empty({T, N}, torch::kLong);
+  const auto d = done.accessor<bool, 2>();
+  auto o = out.accessor<int64_t, 2>();
+  for (int64_t i = 0; i < N; ++i) {
+    size_t episode = 0;
+    for (int64_t t = 0; t < T; ++t) {
+      o[t][i] = started[i].at(episode);
+      if (d[t][i]) ++episode;
+    }
+  }
+  return out;
+}
+
+// Mean over the rollout's episode segments of |mean forward speed − the demo's achieved speed|.
+double speed_error(const Rollout& rollout, const torch::Tensor& demo_of_step, const GailDemos& demos,
+                   int speed_index) {
+  if (speed_index < 0) return std::numeric_limits<double>::quiet_NaN();
+  const auto speed = rollout.observations.select(2, speed_index).to(torch::kCPU, torch::kFloat64).contiguous();
+  const auto done = ((rollout.terminated + rollout.truncated) > 0).to(torch::kCPU).contiguous();
+  const auto s = speed.accessor<double, 2>();
+  const auto d = done.accessor<bool, 2>();
+  const auto m = demo_of_step.accessor<int64_t, 2>();
+  double total = 0, sum = 0;
+  int segments = 0, length = 0;
+  for (int64_t i = 0; i < speed.size(1); ++i) {
+    for (int64_t t = 0; t < speed.size(0); ++t) {
+      sum += s[t][i];
+      ++length;
+      if (!d[t][i] && t + 1 < speed.size(0)) continue;
+      total += std::abs(sum / length - demos.achieved_speeds[m[t][i]]);
+      ++segments;
+      sum = 0;
+      length = 0;
+    }
+  }
+  return total / segments;
+}
+
+std::vector<double> row(const GailMetrics& m) {
+  return {double(m.iteration), double(m.steps), double(m.episodes), m.demo_accuracy, m.policy_accuracy,
+          m.discriminator_loss, m.gail_reward, m.env_return, m.episode_length, m.fall_rate, m.speed_error,
+          m.kl, m.entropy, m.value_loss, m.seconds};
+}
+
+DiscriminatorOptions discriminator_options(const GailOptions& o, const Env& env, int latent_dim) {
+  DiscriminatorOptions d;
+  d.obs_dim = env.obs_dim();
+  d.act_dim = env.act_dim();
+  d.latent_dim = latent_dim;
+  d.state_indices = o.discriminator_state_indices;
+  d.action_low = env.action_spec().low;
+  d.action_high = env.action_spec().high;
+  d.hidden = o.discriminator_hidden;
+  return d;
+}
+
+}  // namespace
+
+const std::vector<std::string> kGailMetricColumns = {
+    "iteration", "steps",        "episodes",     "disc_demo_accuracy", "disc_policy_accuracy",
+    "disc_loss", "gail_reward",  "env_return",   "episode_length",     "fall_rate",
+    "speed_error", "kl",         "entropy",      "value_loss",         "seconds"};
+
+std::string to_string(GailMode mode) { return mode == GailMode::Diverse ? "diverse" : "plain"; }
+
+GailMode parse_gail_mode(const std::string& name) {
+  if (name == "diverse") return GailMode::Diverse;
+  if (name == "plain") return GailMode::Plain;
+  throw std::invalid_argument("GAIL mode must be diverse or plain, not '" + name + "'");
+}
+
+void to_json(nlohmann::json& j, const GailOptions& o) {
+  j = {{"mode", to_string(o.mode)},
+       {"iterations", o.iterations},
+       {"minutes", o.minutes},
+       {"num_envs", o.num_envs},
+       {"env_threads", o.env_threads},
+       {"steps_per_env", o.steps_per_env},
+       {"policy_hidden", o.policy_hidden},
+       {"critic_hidden", o.critic_hidden},
+       {"discriminator_hidden", o.discriminator_hidden},
+       {"discriminator_state_indices", o.discriminator_state_indices},
+       {"init_log_std", o.init_log_std},
+       {"gamma", o.gamma},
+       {"lambda", o.lambda},
+       {"max_kl", o.max_kl},
+       {"critic_learning_rate", o.critic_learning_rate},
+       {"discriminator_steps", o.discriminator_steps},
+       {"discriminator_learning_rate", o.discriminator_learning_rate},
+       {"reward_clip", o.reward_clip},
+       {"seed", o.seed},
+       {"device", o.device},
+       {"demos_path", o.demos_path},
+       {"vae_path", o.vae_path}};
+}
+
+void from_json(const nlohmann::json& j, GailOptions& o) {
+  const GailOptions d;
+  o.mode = parse_gail_mode(j.value("mode", to_string(d.mode)));
+  o.iterations = j.value("iterations", d.iterations);
+  o.minutes = j.value("minutes", d.minutes);
+  o.num_envs = j.value("num_envs", d.num_envs);
+  o.env_threads = j.value("env_threads", d.env_threads);
+  o.steps_per_env = j.value("steps_per_env", d.steps_per_env);
+  o.policy_hidden = j.value("policy_hidden", d.policy_hidden);
+  o.critic_hidden = j.value("critic_hidden", d.critic_hidden);
+  o.discriminator_hidden = j.value("discriminator_hidden", d.discriminator_hidden);
+  o.discriminator_state_indices = j.value("discriminator_state_indices", d.discriminator_state_indices);
+  o.init_log_std = j.value("init_log_std", d.init_log_std);
+  o.gamma = j.value("gamma", d.gamma);
+  o.lambda = j.value("lambda", d.lambda);
+  o.max_kl = j.value("max_kl", d.max_kl);
+  o.critic_learning_rate = j.value("critic_learning_rate", d.critic_learning_rate);
+  o.discriminator_steps = j.value("discriminator_steps", d.discriminator_steps);
+  o.discriminator_learning_rate = j.value("discriminator_learning_rate", d.discriminator_learning_rate);
+  o.reward_clip = j.value("reward_clip", d.reward_clip);
+  o.seed = j.value("seed", d.seed);
+  o.device = j.value("device", d.device);
+  o.demos_path = j.value("demos_path", d.demos_path);
+  o.vae_path = j.value("vae_path", d.vae_path);
+}
+
+std::shared_ptr<Agent> make_gail_agent(const GailOptions& o, int obs_dim, int act_dim,
+                                       const torch::Tensor& demo_observations, vae::TrajectoryVae vae) {
+  torch::manual_seed(derive_seed(o.seed, kInit));
+  auto normalizer = std::make_shared<ObsNormalizer>(obs_dim);
+  normalizer->update(demo_observations);
+  normalizer->set_frozen(true);
+  std::shared_ptr<StochasticPolicy> policy;
+  if (o.mode == GailMode::Diverse) {
+    if (vae.is_empty()) throw std::invalid_argument("diverse GAIL needs a VAE");
+    ResidualPolicyOptions p;
+    p.hidden = o.policy_hidden;
+    p.init_log_std = o.init_log_std;
+    policy = std::make_shared<ResidualPolicy>(vae, normalizer, p);
+  } else {
+    GaussianPolicyOptions p;
+    p.input_dim = obs_dim;
+    p.act_dim = act_dim;
+    p.hidden = o.policy_hidden;
+    p.init_log_std = o.init_log_std;
+    policy = std::make_shared<GaussianPolicy>(p);
+  }
+  CriticOptions c;
+  c.input_dim = policy->input_dim();
+  c.hidden = o.critic_hidden;
+  auto agent = std::make_shared<Agent>(policy, std::make_shared<Critic>(c), normalizer);
+  agent->to(torch::Device(o.device));
+  return agent;
+}
+
+GailTrainer::GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env& prototype, GailOptions options,
+                         std::string run_dir)
+    : options_(std::move(options)), run_dir_(std::move(run_dir)) {
+  const bool diverse = options_.mode == GailMode::Diverse;
+  if (demos.header.obs_dim() != prototype.obs_dim() || demos.header.act_dim() != prototype.act_dim())
+    throw std::invalid_argument(demos.path + ": observations/actions have " +
+                                std::to_string(demos.header.obs_dim()) + "/" + std::to_string(demos.header.act_dim()) +
+                                " components, environment '" + prototype.id() + "' " +
+                                std::to_string(prototype.obs_dim()) + "/" + std::to_string(prototype.act_dim()));
+  if (diverse) {
+    if (vae.is_empty()) throw std::invalid_argument("diverse GAIL needs a VAE");
+    const auto& c = vae->config();
+    if (c.state_dim != prototype.obs_dim() || c.action_dim != prototype.act_dim())
+      throw std::invalid_argument(demos.path + ": observations/actions have " + std::to_string(prototype.obs_dim()) +
+                                  "/" + std::to_string(prototype.act_dim()) + " components, the VAE " +
+                                  std::to_string(c.state_dim) + "/" + std::to_string(c.action_dim));
+    vae->eval();
+  }
+  if (options_.num_envs < 1 || options_.iterations < 0 || options_.discriminator_steps < 0)
+    throw std::invalid_argument("GAIL: num_envs must be positive, iterations and discriminator_steps not negative");
+
+  fs::create_directories(run_dir_ + "/checkpoints");
+  check_or_write_config(run_dir_ + "/config.json", options_, kResumableKeys);
+
+  demos_ = make_gail_demos(demos, vae::split_demos(demos, options_.seed).train, diverse ? &vae : nullptr);
+  envs_ = std::make_unique<VecEnv>(prototype, options_.num_envs, options_.env_threads);
+  steps_per_env_ = options_.steps_per_env > 0 ? options_.steps_per_env : prototype.episode_length();
+  speed_index_ = index_of(prototype.observation_spec().names, "rootx_vel");
+
+  agent_ = make_gail_agent(options_, prototype.obs_dim(), prototype.act_dim(), demos_.observations,
+                           diverse ? vae : vae::TrajectoryVae(nullptr));
+  discriminator_ = std::make_shared<Discriminator>(
+      discriminator_options(options_, prototype, diverse ? demos_.latent_dim() : 0));
+  discriminator_->fit_normalization(demos_.observations, demos_.actions);
+  discriminator_->to(agent_->device());
+  discriminator_trainer_ = std::make_unique<DiscriminatorTrainer>(discriminator_, options_.discriminator_learning_rate);
+  reward_ = std::make_shared<GailReward>(discriminator_, options_.reward_clip);
+  if (fs::exists(checkpoint_path())) load_checkpoint();
+  truncate_metrics(metrics_path(), iteration_);
+  log_ = std::make_unique<CsvLog>(metrics_path(), kGailMetricColumns);
+}
+
+void GailTrainer::save_checkpoint() const {
+  torch::serialize::OutputArchive root, agent, discriminator, optimizer;
+  agent_->save(agent);
+  discriminator_->save(discriminator);
+  discriminator_trainer_->optimizer().save(optimizer);
+  root.write("agent", agent);
+  root.write("discriminator", discriminator);
+  root.write("discriminator_optimizer", optimizer);
+  root.write("iteration", torch::tensor(static_cast<int64_t>(iteration_)));
+  root.write("seconds", torch::tensor(seconds_before_, torch::kFloat64));
+  write_atomically(checkpoint_path(), [&](const std::string& tmp) { root.save_to(tmp); });
+}
+
+void GailTrainer::load_checkpoint() {
+  torch::serialize::InputArchive root, agent, discriminator, optimizer;
+  root.load_from(checkpoint_path(), agent_->device());
+  root.read("agent", agent);
+  root.read("discriminator", discriminator);
+  root.read("discriminator_optimizer", optimizer);
+  agent_->load(agent);
+  discriminator_->load(discriminator);
+  discriminator_trainer_->optimizer().load(optimizer);
+  torch::Tensor iteration, seconds;
+  root.read("iteration", iteration);
+  root.read("seconds", seconds);
+  iteration_ = static_cast<int>(iteration.item<int64_t>());
+  seconds_before_ = seconds.item<double>();
+}
+
+GailMetrics GailTrainer::iterate() {
+  const auto start = std::chrono::steady_clock::now();
+  const bool conditional = options_.mode == GailMode::Diverse;
+  Rng demo_rng(stream_seed(options_.seed, iteration_, kDemoDraws));
+  std::vector<std::vector<int>> started(envs_->size());
+  EpisodeStartFn start_episode = [&](int env_index, Env& env) {
+    const int m = static_cast<int>(demo_rng.next() % static_cast<std::uint64_t>(demos_.size()));
+    started[env_index].push_back(m);
+    if (!demos_.contexts[m].empty()) env.set_context(demos_.contexts[m]);
+    return conditional ? demos_.sample_latent(m, demo_rng) : std::vector<float>{};
+  };
+  RolloutCollector collector(*envs_, agent_, stream_seed(options_.seed, iteration_, kCollect), start_episode,
+                             reward_);
+  const Rollout rollout = collector.collect(steps_per_env_);
+
+  TrpoOptions trpo_options;
+  trpo_options.max_kl = options_.max_kl;
+  trpo_options.critic_learning_rate = options_.critic_learning_rate;
+  trpo_options.seed = stream_seed(options_.seed, iteration_, kTrpo);
+  Trpo trpo(agent_->policy_ptr(), agent_->critic_ptr(), trpo_options);
+  const TrpoStats trpo_stats = trpo.update(make_update_batch(rollout, options_.gamma, options_.lambda));
+
+  // Each policy step against a step of the demonstration its episode imitated, same z.
+  const DiscriminatorData policy{flatten_steps(rollout.observations), flatten_steps(rollout.actions),
+                                 flatten_steps(rollout.conditions)};
+  const auto demo_of_step = step_demonstrations(started, rollout);
+  auto generator = at::detail::createCPUGenerator(stream_seed(options_.seed, iteration_, kDemoSteps));
+  const auto [demo_obs, demo_act] = demos_.sample_steps(demo_of_step.reshape({-1}), generator);
+  const auto device = agent_->device();
+  const DiscriminatorData demo{demo_obs.to(device), demo_act.to(device), policy.z};
+  const DiscriminatorStats disc = discriminator_trainer_->train(demo, policy, options_.discriminator_steps);
+
+  ++iteration_;
+  GailMetrics m;
+  m.iteration = iteration_;
+  m.steps = static_cast<std::int64_t>(iteration_) * steps_per_env_ * envs_->size();
+  m.episodes = static_cast<int>(rollout.episodes.size());
+  m.demo_accuracy = disc.demo_accuracy;
+  m.policy_accuracy = disc.policy_accuracy;
+  m.discriminator_loss = disc.loss;
+  m.gail_reward = rollout.rewards.mean().item<double>();
+  for (const auto& e : rollout.episodes) {
+    m.env_return += e.env_return;
+    m.episode_length += e.length;
+    m.fall_rate += e.terminated;
+  }
+  const double ended = std::max<size_t>(rollout.episodes.size(), 1);
+  m.env_return /= ended;
+  m.episode_length /= ended;
+  m.fall_rate /= ended;
+  m.speed_error = speed_error(rollout, demo_of_step, demos_, speed_index_);
+  m.kl = trpo_stats.kl;
+  m.entropy = trpo_stats.entropy;
+  m.value_loss = trpo_stats.value_loss_after;
+  seconds_before_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  m.seconds = seconds_before_;
+
+  log_->write(row(m));
+  save_checkpoint();
+  return m;
+}
+
+int GailTrainer::train(const std::function<void(const GailMetrics&)>& on_iteration) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto minutes = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 60.0;
+  };
+  int ran = 0;
+  while (iteration_ < options_.iterations && (options_.minutes <= 0 || minutes() < options_.minutes)) {
+    const GailMetrics m = iterate();
+    ++ran;
+    if (on_iteration) on_iteration(m);
+  }
+  return ran;
+}
+
+}  // namespace vaegail

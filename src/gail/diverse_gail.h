@@ -1,0 +1,149 @@
+// The adversarial stage, Algorithm 1 of the paper, and its plain-GAIL baseline.
+//
+// One iteration:
+//   1. every environment, at the start of each of its episodes, draws a training
+//      demonstration τ_j, sets the environment's context to τ_j's (the walker's target speed)
+//      and, in `diverse` mode, draws z_j ~ q(· | τ_j) (one reparameterised sample of the
+//      VAE posterior, μ and σ precomputed per demonstration) as the episode's condition;
+//   2. the policy runs `steps_per_env` steps in each environment (default: one episode length,
+//      Algorithm 1's one trajectory per draw); rewards r = min(-log(1 - D(x, a | z_j)), clip);
+//   3. TRPO updates the policy (and fits the critic) on GAE advantages;
+//   4. the discriminator takes `discriminator_steps` Adam steps: every policy step
+//      (x̂_t, â_t, z_j) against a uniformly drawn step (x_t, a_t) of τ_j with the same z_j.
+// `plain` mode: no z anywhere; a GaussianPolicy from scratch and an unconditional D.
+//
+// The agent's observation normaliser is fixed to the training demonstrations' statistics
+// (the residual policy needs a fixed normaliser, see residual_policy.h; plain mode uses the
+// same for a like-for-like baseline).
+//
+// Run directory:
+//   run_dir/config.json              GailOptions (a rerun must agree, except on iterations,
+//                                    minutes, device, env_threads)
+//   run_dir/metrics.csv              one row per completed iteration (columns: kGailMetricColumns)
+//   run_dir/checkpoints/latest.pt    agent (policy incl. the frozen VAE, critic, normaliser),
+//                                    discriminator, its Adam state and the iteration count,
+//                                    one file written atomically after every iteration
+//
+// Reproducibility: every random stream of iteration k (demonstration draws, z noise, the
+// environments' reset seeds, action noise, TRPO's critic minibatches, the discriminator's demo
+// steps) is derived from (seed, k), and nothing else carries over between iterations except
+// what the checkpoint holds. So a run killed after iteration k and resumed equals the
+// uninterrupted run (same thread counts). The price: each iteration starts fresh episodes
+// (with the default steps_per_env an iteration is exactly one episode per environment
+// anyway), and the critic's Adam state restarts every iteration (rl's Trpo keeps it private).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "data/demos.h"
+#include "env/env.h"
+#include "env/vec_env.h"
+#include "gail/discriminator.h"
+#include "gail/gail_demos.h"
+#include "gail/gail_reward.h"
+#include "rl/agent.h"
+#include "util/csv_log.h"
+#include "vae/trajectory_vae.h"
+
+namespace vaegail {
+
+enum class GailMode { Diverse, Plain };
+std::string to_string(GailMode mode);
+GailMode parse_gail_mode(const std::string& name);  // "diverse" | "plain"; std::invalid_argument otherwise
+
+struct GailOptions {
+  GailMode mode = GailMode::Diverse;
+  int iterations = 30000;   // Table 3, walker
+  double minutes = 0;       // wall-clock budget of one call; 0: none
+  int num_envs = 16;
+  int env_threads = 1;
+  int steps_per_env = 0;    // per iteration; 0: the environment's episode length
+  std::vector<int> policy_hidden = {200, 100};       // Table 2, walker
+  std::vector<int> critic_hidden = {200, 100};
+  std::vector<int> discriminator_hidden = {100, 64};
+  std::vector<int> discriminator_state_indices;      // empty: the whole observation
+  double init_log_std = -1.0;                        // Table 3: initial std exp(-1)
+  // Not given by the paper; the rl stage's TRPO defaults (Schulman et al.'s usual values).
+  double gamma = 0.99;
+  double lambda = 0.95;
+  double max_kl = 0.01;
+  double critic_learning_rate = 1e-3;
+  int discriminator_steps = 10;                      // Table 3
+  double discriminator_learning_rate = 1e-4;         // Table 3
+  double reward_clip = kDefaultGailRewardClip;
+  std::uint64_t seed = 0;
+  std::string device = "cpu";
+  // Recorded in config.json for the record; the trainer is handed the loaded data.
+  std::string demos_path, vae_path;
+};
+
+void to_json(nlohmann::json& j, const GailOptions& o);
+void from_json(const nlohmann::json& j, GailOptions& o);
+
+// One metrics.csv row.
+struct GailMetrics {
+  int iteration = 0;          // 1-based, completed
+  std::int64_t steps = 0;     // environment steps so far
+  int episodes = 0;           // episodes that ended in this iteration
+  double demo_accuracy = 0, policy_accuracy = 0, discriminator_loss = 0;  // before its update
+  double gail_reward = 0;     // mean per step
+  double env_return = 0;      // mean over ended episodes (the task's own reward, context = the demo's)
+  double episode_length = 0, fall_rate = 0;
+  double speed_error = 0;     // mean over episode segments of |mean forward speed − the demo's achieved speed|
+  double kl = 0, entropy = 0, value_loss = 0;
+  double seconds = 0;         // since the run began, summed over resumed calls
+};
+extern const std::vector<std::string> kGailMetricColumns;
+
+// The agent of a mode: ResidualPolicy on the frozen `vae` (diverse) or a GaussianPolicy
+// (plain), a critic on the same input, and an observation normaliser frozen at the
+// statistics of demo_observations [S, obs_dim]. Seeded from options.seed.
+std::shared_ptr<Agent> make_gail_agent(const GailOptions& options, int obs_dim, int act_dim,
+                                       const torch::Tensor& demo_observations, vae::TrajectoryVae vae);
+
+class GailTrainer {
+ public:
+  // `vae` is required in diverse mode and ignored in plain mode. Checks that the
+  // demonstrations, the environment and the VAE agree (std::invalid_argument, one line),
+  // creates or resumes run_dir.
+  GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env& prototype, GailOptions options,
+              std::string run_dir);
+
+  // Iterates until options.iterations are done or options.minutes have passed in this call;
+  // returns the iterations it ran.
+  int train(const std::function<void(const GailMetrics&)>& on_iteration = nullptr);
+  // One iteration of Algorithm 1, then the metrics row and the checkpoint.
+  GailMetrics iterate();
+
+  int iteration() const { return iteration_; }
+  const GailOptions& options() const { return options_; }
+  Agent& agent() { return *agent_; }
+  Discriminator& discriminator() { return *discriminator_; }
+  std::string checkpoint_path() const { return run_dir_ + "/checkpoints/latest.pt"; }
+  std::string metrics_path() const { return run_dir_ + "/metrics.csv"; }
+
+ private:
+  void save_checkpoint() const;
+  void load_checkpoint();
+
+  GailOptions options_;
+  std::string run_dir_;
+  GailDemos demos_;
+  std::unique_ptr<VecEnv> envs_;
+  int steps_per_env_ = 0;
+  int speed_index_ = -1;  // the observation's forward speed (rootx_vel), -1 if it has none
+  std::shared_ptr<Agent> agent_;
+  std::shared_ptr<Discriminator> discriminator_;
+  std::unique_ptr<DiscriminatorTrainer> discriminator_trainer_;
+  std::shared_ptr<GailReward> reward_;
+  std::unique_ptr<CsvLog> log_;
+  int iteration_ = 0;
+  double seconds_before_ = 0;  // run time of earlier calls, from the checkpoint
+};
+
+}  // namespace vaegail

@@ -1,0 +1,144 @@
+#include "gail/diverse_gail.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "data/record.h"
+#include "env/walker.h"
+#include "gail/test_support.h"
+#include "util/atomic_file.h"
+
+namespace vaegail {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kEpisodeLength = 8;
+
+// Walker episodes of random actions, with different target speeds as their contexts.
+DemoSet random_demos(const Env& env, int episodes) {
+  RecordRequest request;
+  for (int i = 0; i < episodes; ++i) {
+    request.seeds.push_back(100 + i);
+    request.contexts.push_back({i % 2 ? 1.0 : -1.0});
+  }
+  DemoSet demos;
+  demos.path = "random.h5";
+  demos.header = header_for(env);
+  demos.episodes = record_episodes(env, request, random_policy(env, 7));
+  return demos;
+}
+
+class DiverseGailTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    WalkerOptions w;
+    w.episode_length = kEpisodeLength;
+    env = std::make_unique<WalkerEnv>(w);
+    demos = random_demos(*env, 6);
+    torch::manual_seed(2);
+    vae = vae::TrajectoryVae(tiny_vae_config(env->obs_dim(), env->act_dim()));
+    options.iterations = 3;
+    options.num_envs = 2;
+    options.policy_hidden = options.critic_hidden = {16};
+    options.discriminator_hidden = {8};
+    options.seed = 9;
+    dir = fs::temp_directory_path() / ("gail_test_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  GailTrainer trainer(const std::string& name, GailOptions o) {
+    return GailTrainer(demos, vae, *env, o, (dir / name).string());
+  }
+
+  std::unique_ptr<WalkerEnv> env;
+  DemoSet demos;
+  vae::TrajectoryVae vae{nullptr};
+  GailOptions options;
+  fs::path dir;
+};
+
+// Every parameter and buffer of the agent and the discriminator, by name.
+std::map<std::string, torch::Tensor> state_of(GailTrainer& t) {
+  std::map<std::string, torch::Tensor> out;
+  for (const auto& item : t.agent().named_parameters()) out["agent." + item.key()] = item.value();
+  for (const auto& item : t.agent().named_buffers()) out["agent." + item.key()] = item.value();
+  for (const auto& item : t.discriminator().named_parameters()) out["disc." + item.key()] = item.value();
+  for (const auto& item : t.discriminator().named_buffers()) out["disc." + item.key()] = item.value();
+  return out;
+}
+
+// metrics.csv without its last column (wall-clock seconds).
+std::string metrics_without_seconds(const std::string& path) {
+  std::istringstream in(read_file(path));
+  std::string line, out;
+  while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + "\n";
+  return out;
+}
+
+TEST_F(DiverseGailTest, ResumedRunEqualsTheUninterruptedOne) {
+  for (const GailMode mode : {GailMode::Diverse, GailMode::Plain}) {
+    SCOPED_TRACE(to_string(mode));
+    options.mode = mode;
+    auto whole = trainer(to_string(mode) + "_whole", options);
+    EXPECT_EQ(whole.train(), 3);
+
+    GailOptions first = options;
+    first.iterations = 1;
+    EXPECT_EQ(trainer(to_string(mode) + "_resumed", first).train(), 1);
+    auto resumed = trainer(to_string(mode) + "_resumed", options);  // a new process, as after a kill
+    EXPECT_EQ(resumed.iteration(), 1);
+    EXPECT_EQ(resumed.train(), 2);
+
+    const auto a = state_of(whole), b = state_of(resumed);
+    ASSERT_EQ(a.size(), b.size());
+    for (const auto& [name, value] : a) EXPECT_TRUE(torch::equal(value, b.at(name))) << name;
+    EXPECT_EQ(metrics_without_seconds(whole.metrics_path()), metrics_without_seconds(resumed.metrics_path()));
+  }
+}
+
+TEST_F(DiverseGailTest, WritesOneMetricsRowPerIterationAndLearns) {
+  auto t = trainer("metrics", options);
+  std::vector<GailMetrics> rows;
+  t.train([&](const GailMetrics& m) { rows.push_back(m); });
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows.back().steps, 3 * 2 * kEpisodeLength);
+  EXPECT_GT(rows.back().gail_reward, 0.0);
+  EXPECT_GE(rows.back().speed_error, 0.0);
+  std::istringstream csv(read_file(t.metrics_path()));
+  std::string line;
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_EQ(lines, 4);
+  EXPECT_EQ(t.agent().condition_dim(), vae->config().latent_dim);
+  EXPECT_EQ(t.discriminator().latent_dim(), vae->config().latent_dim);
+}
+
+TEST_F(DiverseGailTest, PlainModeHasNoLatentAnywhere) {
+  options.mode = GailMode::Plain;
+  auto t = GailTrainer(demos, vae::TrajectoryVae(nullptr), *env, options, (dir / "plain").string());
+  EXPECT_EQ(t.agent().condition_dim(), 0);
+  EXPECT_EQ(t.discriminator().latent_dim(), 0);
+  EXPECT_EQ(t.train(), 3);
+}
+
+TEST_F(DiverseGailTest, RefusesOtherSettingsInAnExistingRun) {
+  trainer("run", options);
+  GailOptions other = options;
+  other.discriminator_steps = 3;
+  EXPECT_THROW(trainer("run", other), std::invalid_argument);
+  other = options;
+  other.iterations = 10;  // extending a run is fine
+  EXPECT_NO_THROW(trainer("run", other));
+}
+
+TEST_F(DiverseGailTest, RefusesAVaeOfOtherDimensions) {
+  vae = vae::TrajectoryVae(tiny_vae_config(env->obs_dim() + 1, env->act_dim()));
+  EXPECT_THROW(trainer("dims", options), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vaegail

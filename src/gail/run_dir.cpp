@@ -1,0 +1,36 @@
+#include "gail/run_dir.h"
+
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include "util/atomic_file.h"
+
+namespace vaegail {
+
+void check_or_write_config(const std::string& path, const nlohmann::json& config,
+                           const std::vector<std::string>& resumable_keys) {
+  if (std::filesystem::exists(path)) {
+    auto stored = nlohmann::json::parse(read_file(path)), wanted = config;
+    for (const auto& key : resumable_keys) {
+      stored.erase(key);
+      wanted.erase(key);
+    }
+    const auto diff = nlohmann::json::diff(stored, wanted);
+    if (!diff.empty())
+      throw std::invalid_argument(path + ": the run was started with other settings (" +
+                                  diff.front().at("path").get<std::string>() + "); use a new run directory");
+  }
+  write_file_atomically(path, config.dump(2));
+}
+
+void truncate_metrics(const std::string& path, int last) {
+  if (!std::filesystem::exists(path)) return;
+  std::istringstream in(read_file(path));
+  std::string line, kept;
+  for (bool header = true; std::getline(in, line); header = false)
+    if (header || (!line.empty() && std::stoi(line.substr(0, line.find(','))) <= last)) kept += line + "\n";
+  write_file_atomically(path, kept);
+}
+
+}  // namespace vaegail
