@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "cli/commands.h"
+#include "cli/task_options.h"
 #include "env/registry.h"
 #include "gail/behavior_cloning.h"
 #include "gail/diverse_gail.h"
@@ -19,22 +20,9 @@ namespace vaegail::cli {
 
 namespace {
 
-void require_device(const std::string& device) {
-  if (device == "cuda" && !torch::cuda::is_available())
-    throw std::invalid_argument("--device cuda: this LibTorch build has no CUDA or sees no GPU");
-}
-
 CLI::Option* add_device(CLI::App& c, std::string& device) {
   return c.add_option("--device", device, "where the networks run")
       ->check(CLI::IsMember({"cpu", "cuda"}))->capture_default_str();
-}
-
-// The environment the demonstrations were recorded in, with episodes as long as the longest.
-std::unique_ptr<Env> demo_env(const DemoSet& demos) {
-  EnvRequest request;
-  request.task = demos.header.env_id;
-  for (const auto& e : demos.episodes) request.episode_length = std::max(request.episode_length, e.length());
-  return make_env(request);
 }
 
 // ---- gail train -----------------------------------------------------------------------
@@ -44,7 +32,7 @@ struct GailFlags {
 };
 
 void run_gail(GailFlags f) {
-  require_device(f.options.device);
+  parse_device(f.options.device);
   f.options.mode = parse_gail_mode(f.mode);
   f.options.demos_path = f.demos;
   const bool diverse = f.options.mode == GailMode::Diverse;
@@ -115,7 +103,7 @@ struct BcFlags {
 };
 
 void run_bc(BcFlags f) {
-  require_device(f.options.device);
+  parse_device(f.options.device);
   f.options.demos_path = f.demos;
   const DemoSet demos = read_demos(f.demos);
   Progress progress("bc", f.options.epochs, "epochs");

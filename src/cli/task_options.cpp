@@ -2,6 +2,9 @@
 
 #include "cli/commands.h"
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace vaegail::cli {
 
 EnvRequest TaskOptions::request() const {
@@ -22,6 +25,23 @@ void add_task_options(CLI::App& command, TaskOptions& o) {
       ->check(CLI::Range(1, 1 << 30))->capture_default_str();
   command.add_flag("--no-fall-termination", o.keep_going_after_fall,
                    "do not end episodes when the body falls");
+}
+
+torch::Device parse_device(const std::string& name) {
+  if (name == "cpu") return torch::kCPU;
+  if (name == "cuda") {
+    if (!torch::cuda::is_available())
+      throw std::invalid_argument("--device cuda: this LibTorch build has no CUDA or sees no GPU");
+    return torch::kCUDA;
+  }
+  throw std::invalid_argument("--device must be cpu or cuda, not '" + name + "'");
+}
+
+std::unique_ptr<Env> demo_env(const DemoSet& demos) {
+  EnvRequest request;
+  request.task = demos.header.env_id;
+  for (const auto& e : demos.episodes) request.episode_length = std::max(request.episode_length, e.length());
+  return make_env(request);
 }
 
 }  // namespace vaegail::cli

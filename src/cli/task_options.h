@@ -5,6 +5,9 @@
 #include <memory>
 #include <string>
 
+#include <torch/torch.h>
+
+#include "data/demos.h"
 #include "env/registry.h"
 
 namespace vaegail::cli {
@@ -18,5 +21,11 @@ struct TaskOptions {
   EnvRequest request() const;
   std::unique_ptr<Env> make() const { return make_env(request()); }
 };
+
+// "cpu" or "cuda"; throws (one line) if CUDA is asked for and this LibTorch has none.
+torch::Device parse_device(const std::string& name);
+
+// The environment the demonstrations were recorded in, with episodes as long as the longest.
+std::unique_ptr<Env> demo_env(const DemoSet& demos);
 
 }  // namespace vaegail::cli

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "cli/commands.h"
+#include "cli/task_options.h"
 #include "env/registry.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
@@ -26,16 +27,6 @@ namespace fs = std::filesystem;
 using vae::TrajectoryVae;
 
 namespace {
-
-torch::Device parse_device(const std::string& name) {
-  if (name == "cpu") return torch::kCPU;
-  if (name == "cuda") {
-    if (!torch::cuda::is_available())
-      throw std::invalid_argument("--device cuda: this LibTorch build has no CUDA or sees no GPU");
-    return torch::kCUDA;
-  }
-  throw std::invalid_argument("--device must be cpu or cuda, not '" + name + "'");
-}
 
 CLI::Option* add_device_option(CLI::App& command, std::string& device) {
   return command.add_option("--device", device, "cpu, or cuda (the state decoder then runs its conv1d path)")
@@ -56,41 +47,20 @@ std::vector<int64_t> all_episodes(const DemoSet& demos) {
   return index;
 }
 
-// mu of q(z | x) for the given episodes, in batches with a progress bar: [M, Z] on the CPU
-// (and sigma when asked for).
-torch::Tensor encode_episodes(TrajectoryVae& model, const DemoSet& demos, const std::vector<int64_t>& episodes,
-                              torch::Tensor* sigma = nullptr) {
-  const auto data = vae::to_trajectory_dataset(demos, episodes, model->config());
-  const int64_t M = data.size(), batch = 64;
-  Progress progress("encode", M, "demos");
-  std::vector<torch::Tensor> mus, sigmas;
-  for (int64_t b = 0; b < M; b += batch) {
-    const int64_t n = std::min(batch, M - b);
-    const auto [mu, s] = vae::encode(model, data.states.narrow(0, b, n),
-                                     data.mask.defined() ? data.mask.narrow(0, b, n) : torch::Tensor(), n);
-    mus.push_back(mu);
-    sigmas.push_back(s);
-    progress.advance(n);
-  }
+// mu (and sigma) of q(z | x) for the episodes, with a progress bar.
+torch::Tensor encode_with_progress(TrajectoryVae& model, const DemoSet& demos, const std::vector<int64_t>& episodes,
+                                   torch::Tensor* sigma = nullptr) {
+  Progress progress("encode", static_cast<std::int64_t>(episodes.size()), "demos");
+  auto mu = vae::encode_episodes(model, demos, episodes, sigma, &progress);
   progress.finish();
-  if (sigma) *sigma = torch::cat(sigmas);
-  return torch::cat(mus);
+  return mu;
 }
 
-vae::LatentPolicy vae_mean_policy(TrajectoryVae model, torch::Device device) {
-  return [model, device](const torch::Tensor& obs, const torch::Tensor& z) mutable {
-    return model->action_mean(obs.to(device), z.to(device));
-  };
-}
-
-// The environment the demonstrations were recorded in, running as long as the longest.
+// The demonstrations' environment, checked against the VAE's dimensions.
 std::unique_ptr<Env> demo_env(const DemoSet& demos, const TrajectoryVae& model) {
-  EnvRequest request;
-  request.task = demos.header.env_id;
-  for (const auto& e : demos.episodes) request.episode_length = std::max(request.episode_length, e.length());
-  auto env = make_env(request);
+  auto env = cli::demo_env(demos);
   if (env->obs_dim() != model->config().state_dim || env->act_dim() != model->config().action_dim)
-    throw std::invalid_argument("env '" + request.task + "' does not match the checkpoint's VAE dimensions");
+    throw std::invalid_argument("env '" + demos.header.env_id + "' does not match the checkpoint's VAE dimensions");
   return env;
 }
 
@@ -193,7 +163,7 @@ void add_embed(CLI::App& vae) {
     torch::NoGradGuard no_grad;
     auto l = load(*f);
     torch::Tensor sigma;
-    const auto mu = encode_episodes(l.model, l.demos, all_episodes(l.demos), &sigma).to(torch::kDouble);
+    const auto mu = encode_with_progress(l.model, l.demos, all_episodes(l.demos), &sigma).to(torch::kDouble);
     sigma = sigma.to(torch::kDouble);
     std::vector<vae::EmbeddingRow> rows;
     for (int i = 0; i < static_cast<int>(l.demos.episodes.size()); ++i) {
@@ -259,11 +229,11 @@ void run_imitate(const ImitateFlags& f) {
   torch::NoGradGuard no_grad;
   auto l = load(f.model);
   const auto episodes = choose_episodes(l.demos, f.episodes, f.held_out_only);
-  const auto z = encode_episodes(l.model, l.demos, episodes);
+  const auto z = encode_with_progress(l.model, l.demos, episodes);
   const auto env = demo_env(l.demos, l.model);
   Progress progress("imitate", static_cast<std::int64_t>(episodes.size()), "episodes");
   const auto outcomes = vae::roll_out_latent_policy(*env, vae::rollout_starts(l.demos, episodes), z,
-                                                    vae_mean_policy(l.model, l.device), f.rollout, &progress);
+                                                    vae::vae_mean_policy(l.model, l.device), f.rollout, &progress);
   progress.finish();
   std::vector<double> demo_speed, imitation_speed;
   int falls = 0;
@@ -328,14 +298,14 @@ void run_interpolate(const InterpolateFlags& f) {
   torch::NoGradGuard no_grad;
   auto l = load(f.model);
   const auto [i, j] = parse_pair(f.pair, static_cast<int64_t>(l.demos.episodes.size()));
-  const auto mu = encode_episodes(l.model, l.demos, {i, j});
+  const auto mu = encode_with_progress(l.model, l.demos, {i, j});
   std::vector<torch::Tensor> zs;
   for (double a : f.alphas) zs.push_back((1 - a) * mu[0] + a * mu[1]);
   const auto env = demo_env(l.demos, l.model);
   // Every alpha starts from demonstration I's initial state, so only z differs.
   const std::vector<vae::RolloutStart> starts(f.alphas.size(), vae::rollout_starts(l.demos, {i})[0]);
   Progress progress("interpolate", static_cast<std::int64_t>(f.alphas.size()), "rollouts");
-  const auto outcomes = vae::roll_out_latent_policy(*env, starts, torch::stack(zs), vae_mean_policy(l.model, l.device),
+  const auto outcomes = vae::roll_out_latent_policy(*env, starts, torch::stack(zs), vae::vae_mean_policy(l.model, l.device),
                                                     {}, &progress);
   progress.finish();
   std::printf("demo %lld speed %.3f m/s, demo %lld speed %.3f m/s\n", static_cast<long long>(i),

@@ -78,8 +78,8 @@ double WalkerEnv::task_reward(double com_speed, double target_speed, double tors
   // A linear term whose slope reaches back to standing still even for 3 m/s (a Gaussian alone
   // gives a 3 m/s learner no signal at rest), plus a sharp one for precision near the target.
   const double dv = std::abs(com_speed - target_speed);
-  const double move = 0.5 * std::max(0.0, 1.0 - dv / (1.0 + std::abs(target_speed))) +
-                      0.5 * std::exp(-2.0 * dv * dv);
+  const double move = 0.6 * std::max(0.0, 1.0 - dv / std::max(1.0, std::abs(target_speed))) +
+                      0.4 * std::exp(-2.0 * dv * dv);
   double effort = 0.0;
   for (int a = 0; a < act_dim; ++a) {
     const double u = std::clamp(static_cast<double>(action[a]), -1.0, 1.0);

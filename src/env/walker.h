@@ -46,7 +46,7 @@ class WalkerEnv : public MujocoEnv {
   double torso_pitch() const;
   double com_speed() const;
   bool fallen() const;
-  static constexpr double kAliveWeight = 0.3;
+  static constexpr double kAliveWeight = 0.2;
   // The reward for a given forward speed, posture and action, for tests and documentation.
   static double task_reward(double com_speed, double target_speed, double torso_height,
                             double pitch, const float* action, int act_dim);

@@ -118,12 +118,13 @@ TEST(Walker, HeightAndFallenFeaturesFollowTheTorso) {
 TEST(Walker, RewardMatchesHandComputedValues) {
   const float zero[6] = {0, 0, 0, 0, 0, 0};
   EXPECT_DOUBLE_EQ(WalkerEnv::task_reward(1.0, 1.0, 1.3, 0.0, zero, 6), 1.0);
-  // 1 m/s too fast for a 1 m/s target: linear term 1 - 1/2, sharp term exp(-2).
-  EXPECT_NEAR(WalkerEnv::task_reward(2.0, 1.0, 1.3, 0.0, zero, 6),
-              0.3 + 0.7 * 0.5 * (0.5 + std::exp(-2.0)), 1e-12);
-  // Standing still with a 3 m/s target still pays the alive weight and a quarter of the linear term.
-  EXPECT_NEAR(WalkerEnv::task_reward(0.0, 3.0, 1.3, 0.0, zero, 6),
-              0.3 + 0.7 * 0.5 * (0.25 + std::exp(-18.0)), 1e-12);
+  // 0.5 m/s too fast for a 1 m/s target: linear term 1 - 0.5/1, sharp term exp(-0.5).
+  EXPECT_NEAR(WalkerEnv::task_reward(1.5, 1.0, 1.3, 0.0, zero, 6),
+              0.2 + 0.8 * (0.6 * 0.5 + 0.4 * std::exp(-0.5)), 1e-12);
+  // Standing still with a 3 m/s target pays the alive weight only; 1.5 m/s pays half the linear term.
+  EXPECT_NEAR(WalkerEnv::task_reward(0.0, 3.0, 1.3, 0.0, zero, 6), 0.2 + 0.8 * 0.4 * std::exp(-18.0), 1e-12);
+  EXPECT_NEAR(WalkerEnv::task_reward(1.5, 3.0, 1.3, 0.0, zero, 6),
+              0.2 + 0.8 * (0.6 * 0.5 + 0.4 * std::exp(-4.5)), 1e-12);
   EXPECT_NEAR(WalkerEnv::task_reward(3.0, 3.0, 1.0, 0.0, zero, 6), 0.5, 1e-12);
   EXPECT_NEAR(WalkerEnv::task_reward(0.0, 0.0, 1.3, M_PI / 2, zero, 6), 0.5, 1e-12);
   const float full[6] = {1, -1, 1, -1, 1, 5};  // clipped to 1

@@ -50,6 +50,18 @@ std::shared_ptr<Agent> make_bc_agent(const BcOptions& options, const torch::Tens
   return agent;
 }
 
+std::shared_ptr<Agent> load_bc_agent(const std::string& run_dir, int obs_dim, int act_dim, torch::Device device) {
+  BcOptions options = read_run_config<BcOptions>(run_dir);
+  options.device = device.str();
+  auto agent = make_bc_agent(options, torch::zeros({2, obs_dim}), act_dim);
+  torch::serialize::InputArchive root, archive;
+  root.load_from(run_checkpoint(run_dir), device);
+  root.read("agent", archive);
+  agent->load(archive);
+  agent->eval();
+  return agent;
+}
+
 BehaviorCloning::BehaviorCloning(const torch::Tensor& observations, const torch::Tensor& actions,
                                  BcOptions options)
     : options_(std::move(options)) {

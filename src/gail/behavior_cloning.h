@@ -45,6 +45,9 @@ void from_json(const nlohmann::json& j, BcOptions& o);
 // The BC agent before training: normaliser frozen at observations' [M, obs_dim] statistics.
 std::shared_ptr<Agent> make_bc_agent(const BcOptions& options, const torch::Tensor& observations, int act_dim);
 
+// The trained agent of a `bc train` run directory, on `device`. Throws naming the file.
+std::shared_ptr<Agent> load_bc_agent(const std::string& run_dir, int obs_dim, int act_dim, torch::Device device);
+
 class BehaviorCloning {
  public:
   // observations [M, obs_dim], actions [M, act_dim] (CPU or device).

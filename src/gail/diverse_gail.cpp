@@ -194,6 +194,21 @@ std::shared_ptr<Agent> make_gail_agent(const GailOptions& o, int obs_dim, int ac
   return agent;
 }
 
+std::shared_ptr<Agent> load_gail_agent(const std::string& run_dir, int obs_dim, int act_dim,
+                                       vae::TrajectoryVae vae, torch::Device device) {
+  GailOptions options = read_run_config<GailOptions>(run_dir);
+  options.device = device.str();
+  // The normaliser's statistics come from the checkpoint; these only give it its shape.
+  auto agent = make_gail_agent(options, obs_dim, act_dim, torch::zeros({2, obs_dim}),
+                               options.mode == GailMode::Diverse ? vae : vae::TrajectoryVae(nullptr));
+  torch::serialize::InputArchive root, archive;
+  root.load_from(run_checkpoint(run_dir), device);
+  root.read("agent", archive);
+  agent->load(archive);
+  agent->eval();
+  return agent;
+}
+
 GailTrainer::GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env& prototype, GailOptions options,
                          std::string run_dir)
     : options_(std::move(options)), run_dir_(std::move(run_dir)) {

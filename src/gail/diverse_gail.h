@@ -106,6 +106,11 @@ extern const std::vector<std::string> kGailMetricColumns;
 std::shared_ptr<Agent> make_gail_agent(const GailOptions& options, int obs_dim, int act_dim,
                                        const torch::Tensor& demo_observations, vae::TrajectoryVae vae);
 
+// The trained agent of a `gail train` run directory (config.json and checkpoints/latest.pt),
+// on `device`, for evaluation; `vae` is required in diverse mode. Throws naming the file.
+std::shared_ptr<Agent> load_gail_agent(const std::string& run_dir, int obs_dim, int act_dim,
+                                       vae::TrajectoryVae vae, torch::Device device);
+
 class GailTrainer {
  public:
   // `vae` is required in diverse mode and ignored in plain mode. Checks that the

@@ -33,4 +33,20 @@ void truncate_metrics(const std::string& path, int last) {
   write_file_atomically(path, kept);
 }
 
+nlohmann::json read_run_config_json(const std::string& run_dir) {
+  const std::string path = run_dir + "/config.json";
+  if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file (not a run directory?)");
+  try {
+    return nlohmann::json::parse(read_file(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+}
+
+std::string run_checkpoint(const std::string& run_dir) {
+  const std::string path = run_dir + "/checkpoints/latest.pt";
+  if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such checkpoint");
+  return path;
+}
+
 }  // namespace vaegail

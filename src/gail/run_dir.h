@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -17,5 +18,19 @@ void check_or_write_config(const std::string& path, const nlohmann::json& config
 // Drops the rows of a metrics CSV whose first column (the iteration or epoch) exceeds
 // `last`: rows logged by a run killed before its checkpoint, which the resumed run redoes.
 void truncate_metrics(const std::string& path, int last);
+
+// run_dir/config.json parsed; throws naming the file when it is missing or malformed.
+nlohmann::json read_run_config_json(const std::string& run_dir);
+template <class Options>
+Options read_run_config(const std::string& run_dir) {
+  const auto j = read_run_config_json(run_dir);
+  try {
+    return j.get<Options>();
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(run_dir + "/config.json: " + e.what());
+  }
+}
+// run_dir/checkpoints/latest.pt; throws naming it when it does not exist.
+std::string run_checkpoint(const std::string& run_dir);
 
 }  // namespace vaegail

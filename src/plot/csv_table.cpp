@@ -6,17 +6,10 @@
 #include <stdexcept>
 
 #include "util/atomic_file.h"
+#include "util/csv_log.h"
 
 namespace vaegail::plot {
 namespace {
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream in(line);
-  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
 
 std::string without_carriage_return(std::string line) {
   if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -34,14 +27,14 @@ CsvTable CsvTable::parse(const std::string& text, const std::string& where) {
   while (table.columns_.empty() && std::getline(in, line)) {
     ++number;
     line = without_carriage_return(line);
-    if (!line.empty()) table.columns_ = split(line);
+    if (!line.empty()) table.columns_ = split_csv_line(line);
   }
   if (table.columns_.empty()) throw std::invalid_argument(where + ": no header row (empty file)");
   while (std::getline(in, line)) {
     ++number;
     line = without_carriage_return(line);
     if (line.empty()) continue;
-    auto cells = split(line);
+    auto cells = split_csv_line(line);
     if (cells.size() != table.columns_.size())
       throw std::invalid_argument(where + ": line " + std::to_string(number) + ": " +
                                   std::to_string(cells.size()) + " cells, header has " +

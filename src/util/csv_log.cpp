@@ -1,6 +1,7 @@
 #include "util/csv_log.h"
 
 #include <cstdio>
+#include <sstream>
 #include <stdexcept>
 
 namespace vaegail {
@@ -37,6 +38,14 @@ void CsvLog::write(const std::vector<double>& values) {
     out_ << (i ? "," : "") << buf;
   }
   out_ << "\n" << std::flush;
+}
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
 }
 
 }  // namespace vaegail

@@ -21,4 +21,8 @@ class CsvLog {
   std::ofstream out_;
 };
 
+// Cells of one CSV line split on commas (no quoting: our files never quote); a trailing comma
+// yields an empty last cell, so a row keeps its column count.
+std::vector<std::string> split_csv_line(const std::string& line);
+
 }  // namespace vaegail

@@ -28,5 +28,11 @@ TEST(CsvLog, WritesHeaderOnceAndAppendsOnReopen) {
   std::remove(path.c_str());
 }
 
+TEST(SplitCsvLine, KeepsEmptyCellsIncludingATrailingOne) {
+  EXPECT_EQ(split_csv_line("a,,b"), (std::vector<std::string>{"a", "", "b"}));
+  EXPECT_EQ(split_csv_line("1,2,"), (std::vector<std::string>{"1", "2", ""}));
+  EXPECT_TRUE(split_csv_line("").empty());
+}
+
 }  // namespace
 }  // namespace vaegail

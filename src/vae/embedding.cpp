@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "util/csv_log.h"
+
 namespace vaegail::vae {
 
 namespace {
@@ -14,14 +16,6 @@ std::string number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9g", v);
   return buf;
-}
-
-std::vector<std::string> split_line(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream in(line);
-  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
 }
 
 std::string header(size_t latent) {
@@ -60,7 +54,7 @@ std::vector<EmbeddingRow> parse_embedding_csv(const std::string& text, const std
   std::stringstream in(text);
   std::string line;
   if (!std::getline(in, line)) throw std::invalid_argument(where + ": empty file");
-  const auto columns = split_line(line);
+  const auto columns = split_csv_line(line);
   if (columns.size() < 5 || (columns.size() - 5) % 2 != 0 ||
       line != header((columns.size() - 5) / 2))
     throw std::invalid_argument(where + ": line 1: not an embedding header (" + header(1) + "...)");
@@ -68,7 +62,7 @@ std::vector<EmbeddingRow> parse_embedding_csv(const std::string& text, const std
   std::vector<EmbeddingRow> rows;
   for (int n = 2; std::getline(in, line); ++n) {
     if (line.empty()) continue;
-    const auto cells = split_line(line);
+    const auto cells = split_csv_line(line);
     const std::string at = where + ": line " + std::to_string(n) + ": ";
     if (cells.size() != columns.size())
       throw std::invalid_argument(at + std::to_string(cells.size()) + " cells, expected " +

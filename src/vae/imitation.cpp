@@ -5,6 +5,9 @@
 #include <stdexcept>
 
 #include "data/record.h"
+#include "util/progress.h"
+#include "vae/vae_trainer.h"
+#include "vae/demo_dataset.h"
 
 namespace vaegail::vae {
 
@@ -89,6 +92,30 @@ double median_abs_difference(const std::vector<double>& a, const std::vector<dou
   std::sort(d.begin(), d.end());
   const size_t n = d.size();
   return n % 2 ? d[n / 2] : 0.5 * (d[n / 2 - 1] + d[n / 2]);
+}
+
+torch::Tensor encode_episodes(TrajectoryVae& model, const DemoSet& demos, const std::vector<int64_t>& episodes,
+                              torch::Tensor* sigma, Progress* progress) {
+  torch::NoGradGuard no_grad;
+  const auto data = to_trajectory_dataset(demos, episodes, model->config());
+  const int64_t M = data.size(), batch = 64;
+  std::vector<torch::Tensor> mus, sigmas;
+  for (int64_t b = 0; b < M; b += batch) {
+    const int64_t n = std::min(batch, M - b);
+    const auto [mu, s] = encode(model, data.states.narrow(0, b, n),
+                                data.mask.defined() ? data.mask.narrow(0, b, n) : torch::Tensor(), n);
+    mus.push_back(mu);
+    sigmas.push_back(s);
+    if (progress) progress->advance(n);
+  }
+  if (sigma) *sigma = torch::cat(sigmas);
+  return torch::cat(mus);
+}
+
+LatentPolicy vae_mean_policy(TrajectoryVae model, torch::Device device) {
+  return [model, device](const torch::Tensor& obs, const torch::Tensor& z) mutable {
+    return model->action_mean(obs.to(device), z.to(device));
+  };
 }
 
 }  // namespace vaegail::vae

@@ -12,6 +12,7 @@
 
 #include "data/demos.h"
 #include "env/env.h"
+#include "vae/trajectory_vae.h"
 
 namespace vaegail {
 class Progress;
@@ -53,6 +54,14 @@ std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
                                                      const LatentPolicy& policy,
                                                      const ImitationOptions& options = {},
                                                      Progress* progress = nullptr);
+
+// mu of q(z | x) for the given episodes, encoded in batches: [M, Z] on the CPU (and sigma when
+// asked for). `progress` advances by one per episode.
+torch::Tensor encode_episodes(TrajectoryVae& model, const DemoSet& demos, const std::vector<int64_t>& episodes,
+                              torch::Tensor* sigma = nullptr, Progress* progress = nullptr);
+
+// The VAE policy's mean action π_α(x, z), the imitation the paper evaluates.
+LatentPolicy vae_mean_policy(TrajectoryVae model, torch::Device device);
 
 // Median of |a - b| over pairs; 0 for none.
 double median_abs_difference(const std::vector<double>& a, const std::vector<double>& b);

@@ -1,0 +1,142 @@
+// `vaegail eval walker`: the paper's walker evaluation (section 4.2, Figure 4 bottom right) of
+// the VAE policy, the diverse-GAIL policy and the baselines, as a table, a CSV and histograms.
+#include <torch/torch.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "cli/commands.h"
+#include "cli/task_options.h"
+#include "eval/walker_eval.h"
+#include "gail/behavior_cloning.h"
+#include "gail/diverse_gail.h"
+#include "plot/charts.h"
+#include "util/atomic_file.h"
+#include "util/progress.h"
+#include "vae/vae_trainer.h"
+
+namespace vaegail::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct EvalWalkerFlags {
+  std::string demos, vae, gail, plain, bc, out_dir, device = "cpu";
+  int per_expert = 11;
+  vae::ImitationOptions rollout;
+};
+
+// The policy's mean action; policies trained without a latent get an empty condition.
+vae::LatentPolicy agent_mean_policy(std::shared_ptr<Agent> agent) {
+  return [agent](const torch::Tensor& obs, const torch::Tensor& z) {
+    const auto condition = agent->condition_dim() > 0 ? z : torch::zeros({obs.size(0), 0});
+    return agent->policy().distribution(agent->input(obs, condition)).mean;
+  };
+}
+
+std::vector<double> column(const std::vector<eval::ImitationRow>& rows, const std::string& policy, bool held_out,
+                           double (*value)(const eval::ImitationRow&)) {
+  std::vector<double> out;
+  for (const auto& r : rows)
+    if (r.policy == policy && r.held_out == held_out) out.push_back(value(r));
+  return out;
+}
+
+void save_histogram(const std::string& path, const plot::Labels& labels,
+                    const std::vector<plot::HistogramSeries>& series) {
+  std::vector<plot::HistogramSeries> drawn;
+  for (const auto& s : series)
+    if (!s.values.empty()) drawn.push_back(s);
+  if (drawn.empty()) return;
+  const auto edges = plot::even_bin_edges(drawn, 30);
+  plot::histogram_chart(labels, edges, drawn).save_png(path);
+  std::printf("\n%s\n%s", labels.title.c_str(), plot::histogram_table(edges, drawn).c_str());
+}
+
+void run_eval_walker(const EvalWalkerFlags& f) {
+  torch::NoGradGuard no_grad;
+  const auto device = parse_device(f.device);
+  if (!fs::exists(f.vae)) throw std::invalid_argument(f.vae + ": no such VAE checkpoint");
+  const DemoSet demos = read_demos(f.demos);
+  auto model = vae::load_trained_vae(f.vae, device);
+  model->eval();
+  const auto env = demo_env(demos);
+  if (env->obs_dim() != model->config().state_dim || env->act_dim() != model->config().action_dim)
+    throw std::invalid_argument(f.demos + ": its environment does not match the VAE's dimensions");
+
+  std::vector<eval::NamedPolicy> policies{{"vae", vae::vae_mean_policy(model, device)}};
+  if (!f.gail.empty())
+    policies.push_back({"diverse_gail", agent_mean_policy(load_gail_agent(f.gail, env->obs_dim(), env->act_dim(),
+                                                                          model, device))});
+  if (!f.plain.empty())
+    policies.push_back({"plain_gail", agent_mean_policy(load_gail_agent(f.plain, env->obs_dim(), env->act_dim(),
+                                                                        vae::TrajectoryVae(nullptr), device))});
+  if (!f.bc.empty())
+    policies.push_back({"bc", agent_mean_policy(load_bc_agent(f.bc, env->obs_dim(), env->act_dim(), device))});
+
+  const auto episodes = eval::episodes_per_expert(demos, f.per_expert);
+  const auto z = vae::encode_episodes(model, demos, episodes);
+  Progress progress("eval walker", static_cast<std::int64_t>(episodes.size() * policies.size()), "rollouts");
+  const auto rows = eval::imitate_with_policies(*env, demos, episodes, z, policies, f.rollout, &progress);
+  progress.finish();
+
+  fs::create_directories(f.out_dir);
+  const auto modes = eval::mode_table(eval::mode_coverages(rows), eval::distinct_targets(rows));
+  const eval::ModeCoverageOptions mode_rule;
+  char rule[160];
+  std::snprintf(rule, sizeof rule, "\nA target speed counts as a covered mode when at least %.0f%% of the average speeds lie "
+                "within %.1f m/s of it (training experts' demonstrations).\n\n", 100 * mode_rule.min_fraction,
+                mode_rule.radius);
+  const auto table = eval::summary_table(eval::summarize(rows)) + rule + modes;
+  write_file_atomically(f.out_dir + "/imitation.csv", eval::rows_csv(rows));
+  write_file_atomically(f.out_dir + "/summary.md", table);
+
+  const auto abs_diff = [](const eval::ImitationRow& r) { return r.abs_difference(); };
+  const auto achieved = [](const eval::ImitationRow& r) { return r.achieved_speed; };
+  const auto demo = [](const eval::ImitationRow& r) { return r.demo_speed; };
+  for (const bool held_out : {false, true}) {
+    std::vector<plot::HistogramSeries> errors;
+    for (const auto& p : policies) errors.push_back({p.name, column(rows, p.name, held_out, abs_diff)});
+    const std::string which = held_out ? "held-out experts' demonstrations (one-shot)" : "training experts' demonstrations";
+    save_histogram(f.out_dir + (held_out ? "/speed_difference_held_out.png" : "/speed_difference.png"),
+                   {"|demo speed - imitation speed|, " + which, "m/s", "demonstrations"}, errors);
+  }
+  std::vector<plot::HistogramSeries> speeds{{"demonstrations", column(rows, "vae", false, demo)}};
+  for (const auto& p : policies) speeds.push_back({p.name, column(rows, p.name, false, achieved)});
+  save_histogram(f.out_dir + "/speeds.png", {"average speed: demonstrations and imitations", "m/s", "episodes"},
+                 speeds);
+  std::printf("\n%s\nwrote %s/{imitation.csv, summary.md, speed_difference.png, speed_difference_held_out.png, "
+              "speeds.png}\n", table.c_str(), f.out_dir.c_str());
+}
+
+void add_eval_walker(CLI::App& eval) {
+  auto f = std::make_shared<EvalWalkerFlags>();
+  CLI::App* c = eval.add_subcommand("walker", "imitate demonstrations with the VAE, diverse-GAIL and baseline "
+                                              "policies; compare their speeds with the demonstrations'");
+  c->add_option("--demos", f->demos, "demonstration file (.h5)")->required();
+  c->add_option("--vae", f->vae, "VAE checkpoint (RUN_DIR/checkpoints/latest.pt); encodes the demonstrations")
+      ->required();
+  c->add_option("--gail", f->gail, "diverse-GAIL run directory (gail train --mode diverse)");
+  c->add_option("--plain", f->plain, "plain-GAIL run directory (gail train --mode plain)");
+  c->add_option("--bc", f->bc, "behaviour-cloning run directory (bc train)");
+  c->add_option("--per-expert", f->per_expert, "demonstrations per expert (the paper: 11)")
+      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  c->add_option("--out-dir", f->out_dir, "where the CSV, the table and the PNGs go")->required();
+  c->add_option("--envs", f->rollout.num_envs, "environments stepped together")
+      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  c->add_option("--device", f->device, "cpu or cuda")->capture_default_str();
+  c->callback([f] { run_eval_walker(*f); });
+}
+
+}  // namespace
+
+void add_eval_commands(CLI::App& app) {
+  CLI::App* eval = app.add_subcommand("eval", "the paper's evaluations");
+  eval->require_subcommand(1);
+  add_eval_walker(*eval);
+}
+
+}  // namespace vaegail::cli

@@ -1,0 +1,162 @@
+#include "eval/walker_eval.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "util/progress.h"
+#include "vae/demo_dataset.h"
+
+namespace vaegail::eval {
+
+std::vector<int64_t> episodes_per_expert(const DemoSet& demos, int per_expert) {
+  std::map<std::string, int> taken;
+  std::vector<int64_t> chosen;
+  for (int64_t i = 0; i < static_cast<int64_t>(demos.episodes.size()); ++i)
+    if (taken[demos.episodes[i].expert_id]++ < per_expert) chosen.push_back(i);
+  return chosen;
+}
+
+std::vector<ImitationRow> imitate_with_policies(const Env& prototype, const DemoSet& demos,
+                                                const std::vector<int64_t>& episodes, const torch::Tensor& z,
+                                                const std::vector<NamedPolicy>& policies,
+                                                const vae::ImitationOptions& options, Progress* progress) {
+  if (z.size(0) != static_cast<int64_t>(episodes.size()))
+    throw std::invalid_argument("imitate_with_policies: " + std::to_string(z.size(0)) + " embeddings for " +
+                                std::to_string(episodes.size()) + " episodes");
+  const auto starts = vae::rollout_starts(demos, episodes);
+  std::vector<ImitationRow> rows;
+  for (const auto& p : policies) {
+    const auto outcomes = vae::roll_out_latent_policy(prototype, starts, z, p.policy, options, progress);
+    for (size_t j = 0; j < episodes.size(); ++j) {
+      const Episode& e = demos.episodes[episodes[j]];
+      ImitationRow r;
+      r.policy = p.name;
+      r.expert_id = e.expert_id;
+      r.episode = episodes[j];
+      r.target = e.context.empty() ? std::nan("") : e.context[0];
+      r.held_out = vae::is_held_out(e);
+      r.demo_speed = vae::achieved_speed(demos, episodes[j]);
+      r.achieved_speed = outcomes[j].achieved_speed;
+      r.fell = outcomes[j].fell;
+      rows.push_back(r);
+    }
+  }
+  return rows;
+}
+
+std::vector<ImitationSummary> summarize(const std::vector<ImitationRow>& rows) {
+  std::vector<std::pair<std::string, bool>> keys;
+  for (const auto& r : rows)
+    if (std::find(keys.begin(), keys.end(), std::make_pair(r.policy, r.held_out)) == keys.end())
+      keys.emplace_back(r.policy, r.held_out);
+  std::vector<ImitationSummary> out;
+  for (const auto& [policy, held_out] : keys) {
+    std::vector<double> demo, achieved;
+    ImitationSummary s{policy, held_out};
+    for (const auto& r : rows) {
+      if (r.policy != policy || r.held_out != held_out) continue;
+      demo.push_back(r.demo_speed);
+      achieved.push_back(r.achieved_speed);
+      s.mean_abs_difference += r.abs_difference();
+      s.fall_rate += r.fell;
+    }
+    s.demonstrations = static_cast<int>(demo.size());
+    s.mean_abs_difference /= s.demonstrations;
+    s.fall_rate /= s.demonstrations;
+    s.median_abs_difference = vae::median_abs_difference(demo, achieved);
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::string rows_csv(const std::vector<ImitationRow>& rows) {
+  std::string csv = "policy,episode,expert_id,target,held_out,demo_speed,achieved_speed,abs_diff,fell\n";
+  char line[320];
+  for (const auto& r : rows) {
+    std::snprintf(line, sizeof line, "%s,%lld,%s,%.9g,%d,%.6f,%.6f,%.6f,%d\n", r.policy.c_str(),
+                  static_cast<long long>(r.episode), r.expert_id.c_str(), r.target, r.held_out ? 1 : 0, r.demo_speed,
+                  r.achieved_speed, r.abs_difference(), r.fell ? 1 : 0);
+    csv += line;
+  }
+  return csv;
+}
+
+std::string summary_table(const std::vector<ImitationSummary>& summaries) {
+  std::string table =
+      "| policy | demonstrations | n | median \\|Δspeed\\| (m/s) | mean \\|Δspeed\\| (m/s) | falls |\n"
+      "|---|---|---:|---:|---:|---:|\n";
+  char line[256];
+  for (const auto& s : summaries) {
+    std::snprintf(line, sizeof line, "| %s | %s | %d | %.3f | %.3f | %.1f%% |\n", s.policy.c_str(),
+                  s.held_out ? "held-out experts (one-shot)" : "training experts", s.demonstrations,
+                  s.median_abs_difference, s.mean_abs_difference, 100.0 * s.fall_rate);
+    table += line;
+  }
+  return table;
+}
+
+ModeCoverage mode_coverage(const std::string& source, const std::vector<double>& speeds,
+                           const std::vector<double>& targets, const ModeCoverageOptions& options) {
+  ModeCoverage c{source, {}, 0};
+  for (const double target : targets) {
+    const auto near = std::count_if(speeds.begin(), speeds.end(),
+                                    [&](double v) { return std::abs(v - target) <= options.radius; });
+    const double fraction = speeds.empty() ? 0.0 : static_cast<double>(near) / speeds.size();
+    c.fractions.push_back(fraction);
+    c.covered += fraction >= options.min_fraction;
+  }
+  return c;
+}
+
+std::vector<double> distinct_targets(const std::vector<ImitationRow>& rows) {
+  std::vector<double> targets;
+  for (const auto& r : rows)
+    if (!r.held_out && !std::isnan(r.target) && std::find(targets.begin(), targets.end(), r.target) == targets.end())
+      targets.push_back(r.target);
+  std::sort(targets.begin(), targets.end());
+  return targets;
+}
+
+std::vector<ModeCoverage> mode_coverages(const std::vector<ImitationRow>& rows, const ModeCoverageOptions& options) {
+  const auto targets = distinct_targets(rows);
+  std::vector<std::string> policies;
+  std::vector<double> demo;
+  for (const auto& r : rows) {
+    if (r.held_out) continue;
+    if (std::find(policies.begin(), policies.end(), r.policy) == policies.end()) policies.push_back(r.policy);
+    if (r.policy == policies.front()) demo.push_back(r.demo_speed);
+  }
+  std::vector<ModeCoverage> out{mode_coverage("demonstrations", demo, targets, options)};
+  for (const auto& p : policies) {
+    std::vector<double> achieved;
+    for (const auto& r : rows)
+      if (!r.held_out && r.policy == p) achieved.push_back(r.achieved_speed);
+    out.push_back(mode_coverage(p, achieved, targets, options));
+  }
+  return out;
+}
+
+std::string mode_table(const std::vector<ModeCoverage>& coverages, const std::vector<double>& targets) {
+  std::string table = "| speeds of |", rule = "|---|";
+  char cell[64];
+  for (const double t : targets) {
+    std::snprintf(cell, sizeof cell, " near %g m/s |", t);
+    table += cell;
+    rule += "---:|";
+  }
+  table += " modes covered |\n" + rule + "---:|\n";
+  for (const auto& c : coverages) {
+    table += "| " + c.source + " |";
+    for (const double f : c.fractions) {
+      std::snprintf(cell, sizeof cell, " %.0f%% |", 100.0 * f);
+      table += cell;
+    }
+    std::snprintf(cell, sizeof cell, " %d of %zu |\n", c.covered, targets.size());
+    table += cell;
+  }
+  return table;
+}
+
+}  // namespace vaegail::eval
