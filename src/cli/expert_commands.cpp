@@ -1,6 +1,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
+#include <numeric>
 #include <thread>
 
 #include "cli/commands.h"
@@ -56,7 +57,12 @@ void run_train(const TrainFlags& f) {
               static_cast<long long>(options.total_steps), f.jobs);
   Progress progress("experts", static_cast<std::int64_t>(specs.size()) * options.total_steps, "steps");
   std::mutex mutex;
+  // Steps already trained count as done from the start, so a resumed job's rate and ETA
+  // measure only new work.
   std::vector<std::int64_t> done(specs.size(), 0);
+  for (size_t i = 0; i < specs.size(); ++i)
+    done[i] = std::min(expert_steps(f.out_dir + "/" + specs[i].id), options.total_steps);
+  progress.set(std::accumulate(done.begin(), done.end(), std::int64_t{0}));
   size_t next = 0;
   std::exception_ptr error;
   auto worker = [&] {

@@ -68,6 +68,7 @@ struct RunState {
   int iteration = 0;
   std::int64_t steps = 0;
   bool done = false;
+  double seconds = 0;  // training wall-clock up to the checkpoint, summed over resumed calls
 };
 
 RunState read_state(const std::string& run_dir) {
@@ -78,13 +79,15 @@ RunState read_state(const std::string& run_dir) {
   s.iteration = j.at("iteration");
   s.steps = j.at("steps");
   s.done = j.at("done");
+  s.seconds = j.value("seconds", 0.0);
   return s;
 }
 
 void save(Agent& agent, const RunState& s, const std::string& run_dir) {
   agent.save_checkpoint(run_dir + "/agent.pt");
   write_file_atomically(run_dir + "/state.json",
-                        nlohmann::json{{"iteration", s.iteration}, {"steps", s.steps}, {"done", s.done}}.dump(2));
+                        nlohmann::json{{"iteration", s.iteration}, {"steps", s.steps}, {"done", s.done},
+                                        {"seconds", s.seconds}}.dump(2));
 }
 
 // Mean |forward speed - target| over the rollout's steps: a cheap training-time signal (the
@@ -105,6 +108,8 @@ int index_of(const std::vector<std::string>& names, const std::string& name) {
 }  // namespace
 
 bool expert_done(const std::string& run_dir) { return read_state(run_dir).done; }
+
+std::int64_t expert_steps(const std::string& run_dir) { return read_state(run_dir).steps; }
 
 void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, const std::string& run_dir,
                   const std::function<void(std::int64_t)>& progress) {
@@ -148,12 +153,14 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
               "approx_kl", "entropy", "value_loss", "seconds"});
   const int speed_index = index_of(prototype.observation_spec().names, "rootx_vel");
   const auto start = std::chrono::steady_clock::now();
+  const double seconds_before = state.seconds;
 
   while (state.steps < options.total_steps) {
     const Rollout rollout = collector.collect(options.steps_per_env);
     const PpoStats stats = ppo.update(make_update_batch(rollout, options.gamma, options.lambda));
     state.steps += static_cast<std::int64_t>(options.steps_per_env) * options.num_envs;
     ++state.iteration;
+    state.seconds = seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     double returns = 0, lengths = 0, falls = 0;
     for (const auto& e : rollout.episodes) {
       returns += e.env_return;
@@ -163,8 +170,7 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
     const double n = std::max<size_t>(rollout.episodes.size(), 1);
     log.write({double(state.iteration), double(state.steps), double(rollout.episodes.size()), returns / n,
                lengths / n, falls / n, speed_error(rollout, spec, speed_index), stats.approx_kl, stats.entropy,
-               stats.value_loss,
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+               stats.value_loss, state.seconds});
     state.done = state.steps >= options.total_steps;
     if (state.done || state.iteration % options.checkpoint_every == 0) save(*agent, state, run_dir);
     if (progress) progress(state.steps);

@@ -55,5 +55,7 @@ struct LoadedExpert {
 // Throws naming the directory and the missing or malformed file.
 LoadedExpert load_expert(const std::string& run_dir);
 bool expert_done(const std::string& run_dir);
+// Environment steps trained so far (0 for a run that has not started).
+std::int64_t expert_steps(const std::string& run_dir);
 
 }  // namespace vaegail

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -28,6 +29,16 @@ ExpertTrainOptions tiny(std::int64_t steps) {
   return o;
 }
 
+// The last column of every data row.
+std::vector<double> last_column(const std::string& csv) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<double> values;
+  while (std::getline(in, line)) values.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+  return values;
+}
+
 int rows(const std::string& csv) {
   std::ifstream in(csv);
   std::string line;
@@ -43,10 +54,16 @@ TEST(ExpertTrainer, ResumesFromItsRunDirectoryAndLoadsForEvaluation) {
   ExpertSpec spec{"ctx_test", {-1.0, 1.0}, -1.0, 3};
   train_expert(spec, tiny(128), dir);  // two iterations of 2 x 32 steps
   EXPECT_TRUE(expert_done(dir));
+  EXPECT_EQ(expert_steps(dir), 128);
   EXPECT_EQ(rows(dir + "/metrics.csv"), 2);
   // Asking for more steps continues where the run stopped, appending to its metrics.
   train_expert(spec, tiny(256), dir);
   EXPECT_EQ(rows(dir + "/metrics.csv"), 4);
+  EXPECT_EQ(expert_steps(dir), 256);
+  // Wall-clock keeps counting across the resume.
+  const auto seconds = last_column(dir + "/metrics.csv");
+  EXPECT_TRUE(std::is_sorted(seconds.begin(), seconds.end()));
+  EXPECT_EQ(expert_steps(dir + "/never_started"), 0);
   ExpertSpec other{"other", {1.0}, -1.0, 0};
   EXPECT_THROW(train_expert(other, tiny(64), dir), std::runtime_error);
 
