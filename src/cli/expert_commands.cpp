@@ -62,7 +62,7 @@ void run_train(const TrainFlags& f) {
   std::vector<std::int64_t> done(specs.size(), 0);
   for (size_t i = 0; i < specs.size(); ++i)
     done[i] = std::min(expert_steps(f.out_dir + "/" + specs[i].id), options.total_steps);
-  progress.set(std::accumulate(done.begin(), done.end(), std::int64_t{0}));
+  progress.resume(std::accumulate(done.begin(), done.end(), std::int64_t{0}));
   size_t next = 0;
   std::exception_ptr error;
   auto worker = [&] {

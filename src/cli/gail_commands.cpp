@@ -50,7 +50,7 @@ void run_gail(GailFlags f) {
   if (trainer.iteration() > 0) std::printf("resuming %s after iteration %d\n", f.run_dir.c_str(), trainer.iteration());
   std::fflush(stdout);
   Progress progress("gail " + f.mode, f.options.iterations, "it");
-  progress.set(trainer.iteration());
+  progress.resume(trainer.iteration());
   trainer.train([&](const GailMetrics& m) {
     char status[160];
     std::snprintf(status, sizeof status, "D acc %.2f/%.2f  reward %.2f  return %.1f  speed err %.2f  falls %.2f",

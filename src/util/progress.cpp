@@ -22,11 +22,15 @@ Progress::~Progress() { finish(); }
 void Progress::advance(std::int64_t n) { set(done_ + n); }
 
 void Progress::set(std::int64_t done) {
-  if (start_done_ < 0) start_done_ = done_;  // a resumed job's rate counts only new work
   done_ = done;
   const auto now = std::chrono::steady_clock::now();
   const double since = seconds_between(last_draw_, now);
   if ((tty_ && since >= 0.1) || (!tty_ && since >= 10.0)) draw(false);
+}
+
+void Progress::resume(std::int64_t done) {
+  start_done_ = done;
+  set(done);
 }
 
 void Progress::set_status(std::string status) { status_ = std::move(status); }
@@ -52,7 +56,7 @@ void Progress::draw(bool final) {
   const auto now = std::chrono::steady_clock::now();
   last_draw_ = now;
   const double elapsed = seconds_between(start_, now);
-  const double rate = elapsed > 0 ? (done_ - (start_done_ < 0 ? 0 : start_done_)) / elapsed : 0;
+  const double rate = elapsed > 0 ? (done_ - start_done_) / elapsed : 0;
   const double eta = rate > 0 ? (total_ - done_) / rate : -1;
   const double frac = total_ > 0 ? static_cast<double>(done_) / total_ : 0;
   const int width = 24;

@@ -17,6 +17,8 @@ class Progress {
 
   void advance(std::int64_t n = 1);
   void set(std::int64_t done);
+  // Work done before this process (a resumed run): shown in the count, left out of the rate.
+  void resume(std::int64_t done);
   // Short text shown after the rate, e.g. "loss 1.23".
   void set_status(std::string status);
   void finish();
@@ -27,7 +29,7 @@ class Progress {
   void draw(bool final);
 
   std::string label_, unit_, status_;
-  std::int64_t total_, done_ = 0, start_done_ = -1;
+  std::int64_t total_, done_ = 0, start_done_ = 0;
   std::chrono::steady_clock::time_point start_, last_draw_;
   bool tty_, finished_ = false;
 };
