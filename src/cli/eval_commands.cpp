@@ -100,9 +100,9 @@ void run_eval_walker(const EvalWalkerFlags& f) {
   for (const bool held_out : {false, true}) {
     std::vector<plot::HistogramSeries> errors;
     for (const auto& p : policies) errors.push_back({p.name, column(rows, p.name, held_out, abs_diff)});
-    const std::string which = held_out ? "held-out experts' demonstrations (one-shot)" : "training experts' demonstrations";
+    const std::string which = held_out ? "held-out experts (one-shot)" : "training experts";
     save_histogram(f.out_dir + (held_out ? "/speed_difference_held_out.png" : "/speed_difference.png"),
-                   {"|demo speed - imitation speed|, " + which, "m/s", "demonstrations"}, errors);
+                   {"|demo - imitation speed|, " + which, "m/s", "demonstrations"}, errors);
   }
   std::vector<plot::HistogramSeries> speeds{{"demonstrations", column(rows, "vae", false, demo)}};
   for (const auto& p : policies) speeds.push_back({p.name, column(rows, p.name, false, achieved)});
