@@ -90,7 +90,11 @@ void run_eval_walker(const EvalWalkerFlags& f) {
   std::snprintf(rule, sizeof rule, "\nA target speed counts as a covered mode when at least %.0f%% of the average speeds lie "
                 "within %.1f m/s of it (training experts' demonstrations).\n\n", 100 * mode_rule.min_fraction,
                 mode_rule.radius);
-  const auto table = eval::summary_table(eval::summarize(rows)) + rule + modes;
+  std::vector<eval::ImitationRow> training_rows;
+  std::copy_if(rows.begin(), rows.end(), std::back_inserter(training_rows),
+               [](const eval::ImitationRow& r) { return !r.held_out; });
+  const auto table = eval::summary_table(eval::summarize(rows)) + "\nBy target speed:\n\n" +
+                     eval::summary_table(eval::summarize(training_rows, /*by_target=*/true)) + rule + modes;
   write_file_atomically(f.out_dir + "/imitation.csv", eval::rows_csv(rows));
   write_file_atomically(f.out_dir + "/summary.md", table);
 

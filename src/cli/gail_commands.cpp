@@ -13,6 +13,7 @@
 #include "env/registry.h"
 #include "gail/behavior_cloning.h"
 #include "gail/diverse_gail.h"
+#include "gail/gail_bench.h"
 #include "util/progress.h"
 #include "vae/vae_trainer.h"
 
@@ -31,7 +32,8 @@ struct GailFlags {
   GailOptions options;
 };
 
-void run_gail(GailFlags f) {
+// The VAE a mode needs (none in plain mode), after checking the flags agree with the mode.
+vae::TrajectoryVae mode_vae(GailFlags& f) {
   parse_device(f.options.device);
   f.options.mode = parse_gail_mode(f.mode);
   f.options.demos_path = f.demos;
@@ -39,12 +41,25 @@ void run_gail(GailFlags f) {
   if (diverse && f.vae.empty()) throw std::invalid_argument("--mode diverse needs --vae (RUN_DIR/checkpoints/latest.pt)");
   if (!diverse && !f.vae.empty()) throw std::invalid_argument("--mode plain takes no --vae");
   f.options.vae_path = f.vae;
+  if (!diverse) return vae::TrajectoryVae(nullptr);
+  if (!std::filesystem::exists(f.vae)) throw std::invalid_argument(f.vae + ": no such VAE checkpoint");
+  return vae::load_trained_vae(f.vae, torch::Device(f.options.device));
+}
+
+void add_mode_options(CLI::App& c, GailFlags& f) {
+  c.add_option("--mode", f.mode, "diverse: VAE-conditioned policy and discriminator; plain: GAIL without z")
+      ->check(CLI::IsMember({"diverse", "plain"}))->capture_default_str();
+  c.add_option("--vae", f.vae, "VAE trainer checkpoint (VAE_RUN/checkpoints/latest.pt); diverse mode");
+  c.add_option("--envs", f.options.num_envs, "environments, one demonstration each per episode")
+      ->check(CLI::Range(1, 1 << 16))->capture_default_str();
+  c.add_option("--env-threads", f.options.env_threads, "threads stepping them")
+      ->check(CLI::Range(1, 256))->capture_default_str();
+  add_device(c, f.options.device);
+}
+
+void run_gail(GailFlags f) {
+  const vae::TrajectoryVae model = mode_vae(f);
   const DemoSet demos = read_demos(f.demos);
-  vae::TrajectoryVae model{nullptr};
-  if (diverse) {
-    if (!std::filesystem::exists(f.vae)) throw std::invalid_argument(f.vae + ": no such VAE checkpoint");
-    model = vae::load_trained_vae(f.vae, torch::Device(f.options.device));
-  }
   const auto env = demo_env(demos);
   GailTrainer trainer(demos, model, *env, f.options, f.run_dir);
   if (trainer.iteration() > 0) std::printf("resuming %s after iteration %d\n", f.run_dir.c_str(), trainer.iteration());
@@ -68,18 +83,13 @@ void add_gail_train(CLI::App& gail) {
   GailOptions& o = f->options;
   CLI::App* c = gail.add_subcommand(
       "train", "adversarial imitation (Algorithm 1); rerun with the same --run-dir to resume or extend");
-  c->add_option("--mode", f->mode, "diverse: VAE-conditioned policy and discriminator; plain: GAIL without z")
-      ->check(CLI::IsMember({"diverse", "plain"}))->capture_default_str();
+  add_mode_options(*c, *f);
   c->add_option("--demos", f->demos, "demonstration file (.h5)")->required();
-  c->add_option("--vae", f->vae, "VAE trainer checkpoint (VAE_RUN/checkpoints/latest.pt); diverse mode");
   c->add_option("--run-dir", f->run_dir, "config.json, metrics.csv, checkpoints/latest.pt")->required();
   c->add_option("--iterations", o.iterations, "train until this many iterations in total (Table 3: 30000)")
       ->check(CLI::Range(1, 1 << 30))->capture_default_str();
   c->add_option("--minutes", o.minutes, "stop after this many minutes of this call (0: no limit)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
-  c->add_option("--envs", o.num_envs, "environments, one demonstration each per episode")
-      ->check(CLI::Range(1, 1 << 16))->capture_default_str();
-  c->add_option("--env-threads", o.env_threads, "threads stepping them")->check(CLI::Range(1, 256))->capture_default_str();
   c->add_option("--steps-per-env", o.steps_per_env, "steps per environment per iteration (0: one episode)")
       ->check(CLI::Range(0, 1 << 30))->capture_default_str();
   c->add_option("--disc-steps", o.discriminator_steps, "discriminator Adam steps per iteration (Table 3)")
@@ -92,7 +102,6 @@ void add_gail_train(CLI::App& gail) {
       ->check(CLI::PositiveNumber)->capture_default_str();
   c->add_option("--max-kl", o.max_kl, "TRPO's bound on the mean KL per update")->check(CLI::PositiveNumber)->capture_default_str();
   c->add_option("--seed", o.seed, "initialisation, demonstration draws, z, environments, noise")->capture_default_str();
-  add_device(*c, o.device);
   c->callback([f] { run_gail(*f); });
 }
 
@@ -131,9 +140,40 @@ void add_bc_train(CLI::App& bc) {
   c->callback([f] { run_bc(*f); });
 }
 
+// ---- bench gail -----------------------------------------------------------------------
+struct GailBenchFlags {
+  GailFlags gail;
+  GailBenchOptions bench;
+};
+
+void add_bench_gail(CLI::App& bench) {
+  auto f = std::make_shared<GailBenchFlags>();
+  f->gail.demos = "data/walker/demos.h5";
+  CLI::App* c = bench.add_subcommand(
+      "gail", "seconds per fine-tuning iteration by phase, env steps/s against the physics ceiling "
+              "(default: the published walker demonstrations and VAE)");
+  add_mode_options(*c, f->gail);
+  c->add_option("--demos", f->gail.demos, "demonstration file (.h5)")->capture_default_str();
+  c->add_option("--iterations", f->bench.iterations, "timed iterations (after one warm-up)")
+      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  c->add_option("--physics-seconds", f->bench.physics_seconds, "measuring time per physics ceiling")
+      ->check(CLI::Range(0.1, 3600.0))->capture_default_str();
+  c->callback([f] {
+    GailFlags flags = f->gail;
+    if (flags.mode == "diverse" && flags.vae.empty()) flags.vae = "checkpoints/walker/vae/checkpoints/latest.pt";
+    const vae::TrajectoryVae model = mode_vae(flags);
+    const DemoSet demos = read_demos(flags.demos);
+    GailBenchOptions options = f->bench;
+    options.gail = flags.options;
+    options.env = demo_env_request(demos);
+    std::fputs(format_gail_bench(options, run_gail_bench(options, demos, model)).c_str(), stdout);
+  });
+}
+
 }  // namespace
 
 void add_gail_commands(CLI::App& app) {
+  add_bench_gail(*app.get_subcommand("bench"));  // add_bench_commands runs first
   CLI::App* gail = app.add_subcommand("gail", "the adversarial stage: diverse GAIL and its plain baseline");
   gail->require_subcommand(1);
   add_gail_train(*gail);

@@ -37,11 +37,11 @@ torch::Device parse_device(const std::string& name) {
   throw std::invalid_argument("--device must be cpu or cuda, not '" + name + "'");
 }
 
-std::unique_ptr<Env> demo_env(const DemoSet& demos) {
+EnvRequest demo_env_request(const DemoSet& demos) {
   EnvRequest request;
   request.task = demos.header.env_id;
   for (const auto& e : demos.episodes) request.episode_length = std::max(request.episode_length, e.length());
-  return make_env(request);
+  return request;
 }
 
 }  // namespace vaegail::cli

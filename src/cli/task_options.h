@@ -26,6 +26,7 @@ struct TaskOptions {
 torch::Device parse_device(const std::string& name);
 
 // The environment the demonstrations were recorded in, with episodes as long as the longest.
-std::unique_ptr<Env> demo_env(const DemoSet& demos);
+EnvRequest demo_env_request(const DemoSet& demos);
+inline std::unique_ptr<Env> demo_env(const DemoSet& demos) { return make_env(demo_env_request(demos)); }
 
 }  // namespace vaegail::cli

@@ -46,26 +46,30 @@ std::vector<ImitationRow> imitate_with_policies(const Env& prototype, const Demo
   return rows;
 }
 
-std::vector<ImitationSummary> summarize(const std::vector<ImitationRow>& rows) {
-  std::vector<std::pair<std::string, bool>> keys;
-  for (const auto& r : rows)
-    if (std::find(keys.begin(), keys.end(), std::make_pair(r.policy, r.held_out)) == keys.end())
-      keys.emplace_back(r.policy, r.held_out);
+std::vector<ImitationSummary> summarize(const std::vector<ImitationRow>& rows, bool by_target) {
+  const auto same_group = [by_target](const ImitationSummary& s, const ImitationRow& r) {
+    return s.policy == r.policy && s.held_out == r.held_out && (!by_target || s.target == r.target);
+  };
   std::vector<ImitationSummary> out;
-  for (const auto& [policy, held_out] : keys) {
+  for (const auto& r : rows) {
+    if (std::any_of(out.begin(), out.end(), [&](const ImitationSummary& s) { return same_group(s, r); })) continue;
+    ImitationSummary s;
+    s.policy = r.policy;
+    s.held_out = r.held_out;
+    if (by_target) s.target = r.target;
     std::vector<double> demo, achieved;
-    ImitationSummary s{policy, held_out};
-    for (const auto& r : rows) {
-      if (r.policy != policy || r.held_out != held_out) continue;
-      demo.push_back(r.demo_speed);
-      achieved.push_back(r.achieved_speed);
-      s.mean_abs_difference += r.abs_difference();
-      s.fall_rate += r.fell;
+    for (const auto& q : rows) {
+      if (!same_group(s, q)) continue;
+      demo.push_back(q.demo_speed);
+      achieved.push_back(q.achieved_speed);
+      s.mean_abs_difference += q.abs_difference();
+      s.fall_rate += q.fell;
     }
     s.demonstrations = static_cast<int>(demo.size());
     s.mean_abs_difference /= s.demonstrations;
     s.fall_rate /= s.demonstrations;
     s.median_abs_difference = vae::median_abs_difference(demo, achieved);
+    s.median_achieved_speed = vae::median(achieved);
     out.push_back(s);
   }
   return out;
@@ -84,14 +88,18 @@ std::string rows_csv(const std::vector<ImitationRow>& rows) {
 }
 
 std::string summary_table(const std::vector<ImitationSummary>& summaries) {
-  std::string table =
-      "| policy | demonstrations | n | median \\|Δspeed\\| (m/s) | mean \\|Δspeed\\| (m/s) | falls |\n"
-      "|---|---|---:|---:|---:|---:|\n";
-  char line[256];
+  const bool by_target = std::any_of(summaries.begin(), summaries.end(),
+                                     [](const ImitationSummary& s) { return !std::isnan(s.target); });
+  std::string table = std::string("| policy | demonstrations | ") + (by_target ? "target (m/s) | " : "") +
+                      "n | median \\|Δspeed\\| (m/s) | mean \\|Δspeed\\| (m/s) | median speed (m/s) | falls |\n" +
+                      "|---|---|" + (by_target ? "---:|" : "") + "---:|---:|---:|---:|---:|\n";
+  char line[320];
   for (const auto& s : summaries) {
-    std::snprintf(line, sizeof line, "| %s | %s | %d | %.3f | %.3f | %.1f%% |\n", s.policy.c_str(),
-                  s.held_out ? "held-out experts (one-shot)" : "training experts", s.demonstrations,
-                  s.median_abs_difference, s.mean_abs_difference, 100.0 * s.fall_rate);
+    char target[32] = "";
+    if (by_target) std::snprintf(target, sizeof target, " %g |", s.target);
+    std::snprintf(line, sizeof line, "| %s | %s |%s %d | %.3f | %.3f | %.3f | %.1f%% |\n", s.policy.c_str(),
+                  s.held_out ? "held-out experts (one-shot)" : "training experts", target, s.demonstrations,
+                  s.median_abs_difference, s.mean_abs_difference, s.median_achieved_speed, 100.0 * s.fall_rate);
     table += line;
   }
   return table;

@@ -7,6 +7,7 @@
 
 #include <torch/torch.h>
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -46,16 +47,20 @@ std::vector<ImitationRow> imitate_with_policies(const Env& prototype, const Demo
 struct ImitationSummary {
   std::string policy;
   bool held_out = false;
+  double target = std::nan("");  // summaries by target only
   int demonstrations = 0;
   double median_abs_difference = 0, mean_abs_difference = 0, fall_rate = 0;
+  double median_achieved_speed = 0;
 };
 
-// One summary per (policy, held_out) present, in order of first appearance.
-std::vector<ImitationSummary> summarize(const std::vector<ImitationRow>& rows);
+// One summary per (policy, held_out) present, or with `by_target` per (policy, held_out,
+// target), in order of first appearance.
+std::vector<ImitationSummary> summarize(const std::vector<ImitationRow>& rows, bool by_target = false);
 
 std::string rows_csv(const std::vector<ImitationRow>& rows);
-// A Markdown table: policy, demonstrations (training / held-out experts), n, median and mean
-// |demo speed - imitation speed|, fall rate.
+// A Markdown table: policy, demonstrations (training / held-out experts), the target when the
+// summaries are by target, n, median and mean |demo speed - imitation speed|, median achieved
+// speed, fall rate.
 std::string summary_table(const std::vector<ImitationSummary>& summaries);
 
 // How we count modes (mode collapse, issue 5): a target speed counts as covered by a set of

@@ -69,6 +69,45 @@ TEST(WalkerEval, ReplayingTheDemonstratorMatchesItsSpeedExactly) {
   const auto table = summary_table(summaries);
   EXPECT_NE(table.find("held-out experts (one-shot)"), std::string::npos);
   EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 6);
+  EXPECT_EQ(table.find("target"), std::string::npos);
+
+  const auto by_target = summarize(rows, /*by_target=*/true);
+  int demonstrations = 0;
+  for (const auto& s : by_target) {
+    demonstrations += s.demonstrations;
+    for (const auto& r : rows)  // every row of a group has its target
+      if (r.policy == s.policy && r.held_out == s.held_out && r.target == s.target) EXPECT_FALSE(std::isnan(s.target));
+  }
+  EXPECT_EQ(demonstrations, static_cast<int>(rows.size()));
+  EXPECT_GT(by_target.size(), summaries.size());
+  EXPECT_NE(summary_table(by_target).find("target (m/s)"), std::string::npos);
+}
+
+TEST(WalkerEval, SummaryMediansAgainstHandComputedValues) {
+  auto row = [](const char* policy, double target, double demo, double achieved, bool fell) {
+    ImitationRow r;
+    r.policy = policy;
+    r.target = target;
+    r.demo_speed = demo;
+    r.achieved_speed = achieved;
+    r.fell = fell;
+    return r;
+  };
+  const std::vector<ImitationRow> rows = {row("p", 1, 1.0, 0.5, false), row("p", 1, 1.0, 0.9, true),
+                                          row("p", 3, 3.0, 1.0, true)};
+  const auto all = summarize(rows);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_NEAR(all[0].median_abs_difference, 0.5, 1e-12);  // |Δ| = 0.5, 0.1, 2.0
+  EXPECT_NEAR(all[0].mean_abs_difference, 2.6 / 3, 1e-12);
+  EXPECT_NEAR(all[0].median_achieved_speed, 0.9, 1e-12);
+  EXPECT_NEAR(all[0].fall_rate, 2.0 / 3, 1e-12);
+  EXPECT_TRUE(std::isnan(all[0].target));
+  const auto by_target = summarize(rows, /*by_target=*/true);
+  ASSERT_EQ(by_target.size(), 2u);
+  EXPECT_EQ(by_target[0].target, 1);
+  EXPECT_NEAR(by_target[0].median_abs_difference, 0.3, 1e-12);
+  EXPECT_NEAR(by_target[0].median_achieved_speed, 0.7, 1e-12);
+  EXPECT_NEAR(by_target[1].fall_rate, 1.0, 1e-12);
 }
 
 TEST(WalkerEval, RejectsEmbeddingsOfTheWrongCount) {

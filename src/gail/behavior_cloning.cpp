@@ -54,11 +54,7 @@ std::shared_ptr<Agent> load_bc_agent(const std::string& run_dir, int obs_dim, in
   BcOptions options = read_run_config<BcOptions>(run_dir);
   options.device = device.str();
   auto agent = make_bc_agent(options, torch::zeros({2, obs_dim}), act_dim);
-  torch::serialize::InputArchive root, archive;
-  root.load_from(run_checkpoint(run_dir), device);
-  root.read("agent", archive);
-  agent->load(archive);
-  agent->eval();
+  load_run_agent(run_dir, *agent, device);
   return agent;
 }
 

@@ -106,6 +106,14 @@ const std::vector<std::string> kGailMetricColumns = {
     "disc_loss", "gail_reward",  "env_return",   "episode_length",     "fall_rate",
     "speed_error", "kl",         "entropy",      "value_loss",         "seconds"};
 
+GailPhaseSeconds& GailPhaseSeconds::operator+=(const GailPhaseSeconds& o) {
+  rollout += o.rollout;
+  policy_update += o.policy_update;
+  discriminator += o.discriminator;
+  bookkeeping += o.bookkeeping;
+  return *this;
+}
+
 std::string to_string(GailMode mode) { return mode == GailMode::Diverse ? "diverse" : "plain"; }
 
 GailMode parse_gail_mode(const std::string& name) {
@@ -201,11 +209,7 @@ std::shared_ptr<Agent> load_gail_agent(const std::string& run_dir, int obs_dim, 
   // The normaliser's statistics come from the checkpoint; these only give it its shape.
   auto agent = make_gail_agent(options, obs_dim, act_dim, torch::zeros({2, obs_dim}),
                                options.mode == GailMode::Diverse ? vae : vae::TrajectoryVae(nullptr));
-  torch::serialize::InputArchive root, archive;
-  root.load_from(run_checkpoint(run_dir), device);
-  root.read("agent", archive);
-  agent->load(archive);
-  agent->eval();
+  load_run_agent(run_dir, *agent, device);
   return agent;
 }
 
@@ -281,7 +285,15 @@ void GailTrainer::load_checkpoint() {
 }
 
 GailMetrics GailTrainer::iterate() {
-  const auto start = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  auto lap_start = start;
+  const auto lap = [&lap_start] {
+    const auto now = Clock::now();
+    const double s = std::chrono::duration<double>(now - lap_start).count();
+    lap_start = now;
+    return s;
+  };
   const bool conditional = options_.mode == GailMode::Diverse;
   Rng demo_rng(stream_seed(options_.seed, iteration_, kDemoDraws));
   std::vector<std::vector<int>> started(envs_->size());
@@ -294,6 +306,7 @@ GailMetrics GailTrainer::iterate() {
   RolloutCollector collector(*envs_, agent_, stream_seed(options_.seed, iteration_, kCollect), start_episode,
                              reward_);
   const Rollout rollout = collector.collect(steps_per_env_);
+  last_phases_.rollout = lap();
 
   TrpoOptions trpo_options;
   trpo_options.max_kl = options_.max_kl;
@@ -301,6 +314,7 @@ GailMetrics GailTrainer::iterate() {
   trpo_options.seed = stream_seed(options_.seed, iteration_, kTrpo);
   Trpo trpo(agent_->policy_ptr(), agent_->critic_ptr(), trpo_options);
   const TrpoStats trpo_stats = trpo.update(make_update_batch(rollout, options_.gamma, options_.lambda));
+  last_phases_.policy_update = lap();
 
   // Each policy step against a step of the demonstration its episode imitated, same z.
   const DiscriminatorData policy{flatten_steps(rollout.observations), flatten_steps(rollout.actions),
@@ -311,6 +325,7 @@ GailMetrics GailTrainer::iterate() {
   const auto device = agent_->device();
   const DiscriminatorData demo{demo_obs.to(device), demo_act.to(device), policy.z};
   const DiscriminatorStats disc = discriminator_trainer_->train(demo, policy, options_.discriminator_steps);
+  last_phases_.discriminator = lap();
 
   ++iteration_;
   GailMetrics m;
@@ -334,11 +349,12 @@ GailMetrics GailTrainer::iterate() {
   m.kl = trpo_stats.kl;
   m.entropy = trpo_stats.entropy;
   m.value_loss = trpo_stats.value_loss_after;
-  seconds_before_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  seconds_before_ += std::chrono::duration<double>(Clock::now() - start).count();
   m.seconds = seconds_before_;
 
   log_->write(row(m));
   save_checkpoint();
+  last_phases_.bookkeeping = lap();
   return m;
 }
 

@@ -100,6 +100,16 @@ struct GailMetrics {
 };
 extern const std::vector<std::string> kGailMetricColumns;
 
+// Where an iteration's wall-clock went (for `bench gail`; not logged).
+struct GailPhaseSeconds {
+  double rollout = 0;        // environments and policy sampling, discriminator rewards
+  double policy_update = 0;  // TRPO step and critic fit
+  double discriminator = 0;  // demonstration steps drawn, discriminator Adam steps
+  double bookkeeping = 0;    // metrics row, CSV, atomic checkpoint
+  double total() const { return rollout + policy_update + discriminator + bookkeeping; }
+  GailPhaseSeconds& operator+=(const GailPhaseSeconds& o);
+};
+
 // The agent of a mode: ResidualPolicy on the frozen `vae` (diverse) or a GaussianPolicy
 // (plain), a critic on the same input, and an observation normaliser frozen at the
 // statistics of demo_observations [S, obs_dim]. Seeded from options.seed.
@@ -126,6 +136,7 @@ class GailTrainer {
   GailMetrics iterate();
 
   int iteration() const { return iteration_; }
+  const GailPhaseSeconds& last_phase_seconds() const { return last_phases_; }
   const GailOptions& options() const { return options_; }
   Agent& agent() { return *agent_; }
   Discriminator& discriminator() { return *discriminator_; }
@@ -149,6 +160,7 @@ class GailTrainer {
   std::unique_ptr<CsvLog> log_;
   int iteration_ = 0;
   double seconds_before_ = 0;  // run time of earlier calls, from the checkpoint
+  GailPhaseSeconds last_phases_;
 };
 
 }  // namespace vaegail

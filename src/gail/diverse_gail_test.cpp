@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <sstream>
 
-#include "data/record.h"
 #include "env/walker.h"
 #include "gail/test_support.h"
 #include "util/atomic_file.h"
@@ -17,27 +16,13 @@ namespace fs = std::filesystem;
 
 constexpr int kEpisodeLength = 8;
 
-// Walker episodes of random actions, with different target speeds as their contexts.
-DemoSet random_demos(const Env& env, int episodes) {
-  RecordRequest request;
-  for (int i = 0; i < episodes; ++i) {
-    request.seeds.push_back(100 + i);
-    request.contexts.push_back({i % 2 ? 1.0 : -1.0});
-  }
-  DemoSet demos;
-  demos.path = "random.h5";
-  demos.header = header_for(env);
-  demos.episodes = record_episodes(env, request, random_policy(env, 7));
-  return demos;
-}
-
 class DiverseGailTest : public ::testing::Test {
  protected:
   void SetUp() override {
     WalkerOptions w;
     w.episode_length = kEpisodeLength;
     env = std::make_unique<WalkerEnv>(w);
-    demos = random_demos(*env, 6);
+    demos = random_walker_demos(*env, 6);
     torch::manual_seed(2);
     vae = vae::TrajectoryVae(tiny_vae_config(env->obs_dim(), env->act_dim()));
     options.iterations = 3;

@@ -49,4 +49,12 @@ std::string run_checkpoint(const std::string& run_dir) {
   return path;
 }
 
+void load_run_agent(const std::string& run_dir, Agent& agent, torch::Device device) {
+  torch::serialize::InputArchive root, archive;
+  root.load_from(run_checkpoint(run_dir), device);
+  root.read("agent", archive);
+  agent.load(archive);
+  agent.eval();
+}
+
 }  // namespace vaegail

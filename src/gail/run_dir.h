@@ -1,11 +1,13 @@
-// What the GAIL and BC run directories share: a config a rerun must agree with, and a
-// metrics log cut back to the last checkpoint.
+// What the GAIL and BC run directories share: a config a rerun must agree with, a metrics
+// log cut back to the last checkpoint, and the trained agent.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "rl/agent.h"
 
 namespace vaegail {
 
@@ -32,5 +34,9 @@ Options read_run_config(const std::string& run_dir) {
 }
 // run_dir/checkpoints/latest.pt; throws naming it when it does not exist.
 std::string run_checkpoint(const std::string& run_dir);
+
+// Loads the "agent" archive of run_dir's checkpoint into `agent` (built to the run's config)
+// on `device`, and puts it in evaluation mode.
+void load_run_agent(const std::string& run_dir, Agent& agent, torch::Device device);
 
 }  // namespace vaegail

@@ -1,9 +1,11 @@
-// Shared by the gail tests: a tiny VAE and one-thread Torch.
+// Shared by the gail tests: a tiny VAE, random walker demonstrations and one-thread Torch.
 #pragma once
 
 #include <gtest/gtest.h>
 #include <torch/torch.h>
 
+#include "data/record.h"
+#include "env/env.h"
 #include "vae/trajectory_vae.h"
 #include "vae/vae_config.h"
 
@@ -26,6 +28,20 @@ inline vae::VaeConfig tiny_vae_config(int state_dim, int action_dim, int latent_
   c.wavenet_layers = 1;
   c.mixture_components = 1;
   return c;
+}
+
+// Walker episodes of random actions, with target speeds -1 and 1 as their contexts.
+inline DemoSet random_walker_demos(const Env& env, int episodes) {
+  RecordRequest request;
+  for (int i = 0; i < episodes; ++i) {
+    request.seeds.push_back(100 + i);
+    request.contexts.push_back({i % 2 ? 1.0 : -1.0});
+  }
+  DemoSet demos;
+  demos.path = "random.h5";
+  demos.header = header_for(env);
+  demos.episodes = record_episodes(env, request, random_policy(env, 7));
+  return demos;
 }
 
 }  // namespace vaegail

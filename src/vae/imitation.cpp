@@ -84,14 +84,18 @@ std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
   return out;
 }
 
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
 double median_abs_difference(const std::vector<double>& a, const std::vector<double>& b) {
   if (a.size() != b.size()) throw std::invalid_argument("median_abs_difference: sizes differ");
-  if (a.empty()) return 0.0;
   std::vector<double> d;
   for (size_t i = 0; i < a.size(); ++i) d.push_back(std::abs(a[i] - b[i]));
-  std::sort(d.begin(), d.end());
-  const size_t n = d.size();
-  return n % 2 ? d[n / 2] : 0.5 * (d[n / 2 - 1] + d[n / 2]);
+  return median(std::move(d));
 }
 
 torch::Tensor encode_episodes(TrajectoryVae& model, const DemoSet& demos, const std::vector<int64_t>& episodes,

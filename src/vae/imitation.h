@@ -63,6 +63,8 @@ torch::Tensor encode_episodes(TrajectoryVae& model, const DemoSet& demos, const 
 // The VAE policy's mean action π_α(x, z), the imitation the paper evaluates.
 LatentPolicy vae_mean_policy(TrajectoryVae model, torch::Device device);
 
+// The median; 0 for none.
+double median(std::vector<double> values);
 // Median of |a - b| over pairs; 0 for none.
 double median_abs_difference(const std::vector<double>& a, const std::vector<double>& b);
 

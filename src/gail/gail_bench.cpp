@@ -1,0 +1,78 @@
+#include "gail/gail_bench.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <random>
+
+namespace vaegail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Removes the bench's run directory however the bench ends.
+struct ScratchDir {
+  fs::path path;
+  ScratchDir() : path(fs::temp_directory_path() / ("vaegail-bench-gail-" + std::to_string(std::random_device{}()))) {}
+  ~ScratchDir() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+}  // namespace
+
+GailBenchResult run_gail_bench(const GailBenchOptions& options, const DemoSet& demos, vae::TrajectoryVae vae) {
+  if (options.iterations < 1) throw std::invalid_argument("bench gail: iterations must be positive");
+  GailBenchResult r;
+  PhysicsBenchOptions physics;
+  physics.env = options.env;
+  physics.seconds = options.physics_seconds;
+  physics.num_envs = options.gail.num_envs;
+  physics.threads = options.gail.env_threads;
+  r.physics = run_physics_bench(physics);
+
+  const auto env = make_env(options.env);
+  const ScratchDir scratch;
+  GailOptions gail = options.gail;
+  gail.iterations = options.iterations + 1;
+  gail.minutes = 0;
+  GailTrainer trainer(demos, vae, *env, gail, scratch.path.string());
+  const GailMetrics warm_up = trainer.iterate();
+  r.steps_per_iteration = warm_up.steps;
+  for (r.iterations = 0; r.iterations < options.iterations; ++r.iterations) {
+    trainer.iterate();
+    r.phases += trainer.last_phase_seconds();
+  }
+  return r;
+}
+
+std::string format_gail_bench(const GailBenchOptions& o, const GailBenchResult& r) {
+  const double per_it = r.seconds_per_iteration();
+  const auto share = [&](double seconds) { return 100.0 * seconds / r.phases.total(); };
+  const auto phase = [&](const char* name, double seconds) {
+    char line[160];
+    std::snprintf(line, sizeof line, "  %-16s %8.3f s  %5.1f%%\n", name, seconds / r.iterations, share(seconds));
+    return std::string(line);
+  };
+  char head[640];
+  std::snprintf(head, sizeof head,
+                "bench gail: %s mode, %d environments x %lld steps per iteration, %d timed iterations "
+                "(after one warm-up), %d Torch thread(s)\n"
+                "per iteration      %8.3f s\n",
+                to_string(o.gail.mode).c_str(), o.gail.num_envs,
+                static_cast<long long>(r.steps_per_iteration / o.gail.num_envs), r.iterations,
+                torch::get_num_threads(), per_it);
+  char tail[640];
+  std::snprintf(tail, sizeof tail,
+                "env steps/s        %8.0f during fine-tuning\n"
+                "ceilings           %8.0f control steps/s raw physics, %.0f VecEnv + 2x%d tanh MLP\n"
+                "ratio              %8.3f of raw physics, %.3f of VecEnv + MLP\n",
+                r.env_steps_per_s(), r.physics.raw_control_steps_per_s, r.physics.vec_control_steps_per_s, PhysicsBenchOptions().hidden,
+                r.env_steps_per_s() / r.physics.raw_control_steps_per_s,
+                r.env_steps_per_s() / r.physics.vec_control_steps_per_s);
+  return std::string(head) + phase("rollout", r.phases.rollout) + phase("TRPO + critic", r.phases.policy_update) +
+         phase("discriminator", r.phases.discriminator) + phase("log + checkpoint", r.phases.bookkeeping) + tail;
+}
+
+}  // namespace vaegail

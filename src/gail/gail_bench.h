@@ -1,0 +1,35 @@
+// `vaegail bench gail`: wall-clock per fine-tuning iteration (Algorithm 1) and environment steps
+// per second, split by phase and set against the physics ceiling measured in the same run.
+#pragma once
+
+#include <string>
+
+#include "bench/physics_bench.h"
+#include "data/demos.h"
+#include "env/registry.h"
+#include "gail/diverse_gail.h"
+#include "vae/trajectory_vae.h"
+
+namespace vaegail {
+
+struct GailBenchOptions {
+  GailOptions gail;         // mode, environments, network sizes as `gail train`
+  EnvRequest env;           // the demonstrations' environment
+  int iterations = 5;       // timed, after one untimed warm-up iteration
+  double physics_seconds = 3.0;
+};
+
+struct GailBenchResult {
+  int iterations = 0;
+  std::int64_t steps_per_iteration = 0;
+  GailPhaseSeconds phases;             // summed over the timed iterations
+  PhysicsBenchResult physics;          // same machine, same run
+  double seconds_per_iteration() const { return phases.total() / iterations; }
+  double env_steps_per_s() const { return steps_per_iteration / seconds_per_iteration(); }
+};
+
+// Trains in a temporary run directory that is removed afterwards; `vae` is needed in diverse mode.
+GailBenchResult run_gail_bench(const GailBenchOptions& options, const DemoSet& demos, vae::TrajectoryVae vae);
+std::string format_gail_bench(const GailBenchOptions& options, const GailBenchResult& result);
+
+}  // namespace vaegail
