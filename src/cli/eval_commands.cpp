@@ -104,7 +104,7 @@ void run_eval_walker(const EvalWalkerFlags& f) {
   for (const bool held_out : {false, true}) {
     std::vector<plot::HistogramSeries> errors;
     for (const auto& p : policies) errors.push_back({p.name, column(rows, p.name, held_out, abs_diff)});
-    const std::string which = held_out ? "held-out experts (one-shot)" : "training experts";
+    const std::string which = held_out ? "one-shot (held out)" : "training experts";
     save_histogram(f.out_dir + (held_out ? "/speed_difference_held_out.png" : "/speed_difference.png"),
                    {"|demo - imitation speed|, " + which, "m/s", "demonstrations"}, errors);
   }
