@@ -17,7 +17,7 @@ EnvRequest TaskOptions::request() const {
 }
 
 void add_task_options(CLI::App& command, TaskOptions& o) {
-  command.add_option("--task", o.task, "built-in task (walker) or the path of an MJCF .xml file")
+  command.add_option("--task", o.task, "built-in task (walker, arm) or the path of an MJCF .xml file")
       ->capture_default_str();
   command.add_option("--episode-length", o.episode_length, "control steps per episode (0: the task's default)")
       ->check(CLI::Range(0, 1 << 30));

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "env/arm.h"
 #include "env/mujoco_env.h"
 #include "env/walker.h"
 
@@ -13,7 +14,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }
 }  // namespace
 
-std::vector<std::string> builtin_tasks() { return {"walker"}; }
+std::vector<std::string> builtin_tasks() { return {"walker", "arm"}; }
 
 std::unique_ptr<Env> make_env(const EnvRequest& request) {
   if (request.task == "walker") {
@@ -21,6 +22,11 @@ std::unique_ptr<Env> make_env(const EnvRequest& request) {
     o.terminate_on_fall = request.terminate_on_fall;
     if (request.episode_length > 0) o.episode_length = request.episode_length;
     return std::make_unique<WalkerEnv>(o);
+  }
+  if (request.task == "arm") {
+    ArmOptions o;
+    if (request.episode_length > 0) o.episode_length = request.episode_length;
+    return std::make_unique<ArmEnv>(o);
   }
   if (ends_with(request.task, ".xml")) {
     MujocoEnvOptions o;

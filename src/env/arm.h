@@ -1,0 +1,60 @@
+// The reaching task (models/arm.xml, the paper's Jaco experiment): 9 DoF (6 arm joints, 3
+// fingers), 9 motors, control step 0.05 s, 50-step episodes (2.5 s), every episode from the
+// same home configuration (qpos = qvel = 0; the seed does not move it). Context: the target
+// position (x, y, z) in metres, in the table-top workspace.
+//
+// Observation layout (21 floats):
+//   0..8    joint angles    arm_1..arm_6, finger_1..finger_3 (rad)
+//   9..17   joint velocities, same order (rad/s)
+//   18..20  grip position   the end effector (site "grip") in the world frame (m)
+// The target is not observed: each expert reaches its own fixed target, and the VAE infers the
+// goal from the demonstrated trajectory.
+//
+// Features: grip_x, grip_y, grip_z (m), target_distance (m, grip to target).
+//
+// Reward for the expert stage, in [-0.01, 1]:
+//   0.5 * max(0, 1 - d / 0.5) + 0.5 * exp(-(d / 0.05)^2) - 0.01 * mean(a^2)
+// The linear term pulls from anywhere in the workspace, the sharp one pays for being on the
+// target and staying there (every step counts), the control cost asks for smooth motion.
+#pragma once
+
+#include <array>
+
+#include "env/mujoco_env.h"
+
+namespace vaegail {
+
+struct ArmOptions {
+  int episode_length = 50;
+};
+
+class ArmEnv : public MujocoEnv {
+ public:
+  static constexpr int kJoints = 9;
+  // The workspace targets are drawn from (axis-aligned box on the table, in front of the base).
+  static constexpr std::array<double, 3> kTargetLow = {0.25, -0.4, 0.05};
+  static constexpr std::array<double, 3> kTargetHigh = {0.65, 0.4, 0.45};
+
+  explicit ArmEnv(ArmOptions options = {});
+  ArmEnv(std::shared_ptr<const MujocoModel> model, ArmOptions options);
+
+  void observe(float* out) const override;
+  void features(double* out) const override;
+  std::unique_ptr<Env> clone() const override;
+
+  std::array<double, 3> grip_position() const;
+  double target_distance() const;
+  // A target drawn uniformly from the workspace box.
+  static std::vector<double> random_target(Rng& rng);
+  static double task_reward(double target_distance, const float* action, int act_dim);
+
+ protected:
+  void initialize_episode(Rng& rng) override;
+  double reward(const float* action) const override;
+
+ private:
+  ArmOptions arm_options_;
+  int grip_ = 0;
+};
+
+}  // namespace vaegail
