@@ -63,9 +63,7 @@ void run_eval_walker(const EvalWalkerFlags& f) {
   const DemoSet demos = read_demos(f.demos);
   auto model = vae::load_trained_vae(f.vae, device);
   model->eval();
-  const auto env = demo_env(demos);
-  if (env->obs_dim() != model->config().state_dim || env->act_dim() != model->config().action_dim)
-    throw std::invalid_argument(f.demos + ": its environment does not match the VAE's dimensions");
+  const auto env = demo_env(demos, model);
 
   std::vector<eval::NamedPolicy> policies{{"vae", vae::vae_mean_policy(model, device)}};
   if (!f.gail.empty())
@@ -131,7 +129,7 @@ void add_eval_walker(CLI::App& eval) {
   c->add_option("--out-dir", f->out_dir, "where the CSV, the table and the PNGs go")->required();
   c->add_option("--envs", f->rollout.num_envs, "environments stepped together")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
-  c->add_option("--device", f->device, "cpu or cuda")->capture_default_str();
+  add_device_option(*c, f->device);
   c->callback([f] { run_eval_walker(*f); });
 }
 

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/task_options.h"
 #include "experts/demo_collection.h"
 #include "experts/expert_eval.h"
 #include "experts/expert_trainer.h"
@@ -178,7 +179,7 @@ void add_expert_commands(CLI::App& app) {
   train->add_option("--only", t->only, "train only these expert ids");
   train->add_option("--steps", t->steps, "environment steps per expert (overrides the config)")->check(CLI::Range(int64_t{1}, int64_t{1} << 40));
   train->add_option("--jobs", t->jobs, "experts trained at once (one core each)")->check(CLI::Range(1, 64))->capture_default_str();
-  train->add_option("--device", t->device, "torch device (cpu, cuda)")->capture_default_str();
+  add_device_option(*train, t->device);
   train->callback([t] { run_train(*t); });
 
   auto e = std::make_shared<EvalFlags>();

@@ -21,11 +21,6 @@ namespace vaegail::cli {
 
 namespace {
 
-CLI::Option* add_device(CLI::App& c, std::string& device) {
-  return c.add_option("--device", device, "where the networks run")
-      ->check(CLI::IsMember({"cpu", "cuda"}))->capture_default_str();
-}
-
 // ---- gail train -----------------------------------------------------------------------
 struct GailFlags {
   std::string mode = "diverse", demos, vae, run_dir;
@@ -54,7 +49,7 @@ void add_mode_options(CLI::App& c, GailFlags& f) {
       ->check(CLI::Range(1, 1 << 16))->capture_default_str();
   c.add_option("--env-threads", f.options.env_threads, "threads stepping them")
       ->check(CLI::Range(1, 256))->capture_default_str();
-  add_device(c, f.options.device);
+  add_device_option(c, f.options.device);
 }
 
 void run_gail(GailFlags f) {
@@ -136,7 +131,7 @@ void add_bc_train(CLI::App& bc) {
   c->add_option("--batch-size", o.batch_size, "(x, a) pairs per step")->check(CLI::Range(1, 1 << 24))->capture_default_str();
   c->add_option("--lr", o.learning_rate, "Adam learning rate")->check(CLI::PositiveNumber)->capture_default_str();
   c->add_option("--seed", o.seed, "initialisation, shuffling and the validation split")->capture_default_str();
-  add_device(*c, o.device);
+  add_device_option(*c, o.device);
   c->callback([f] { run_bc(*f); });
 }
 
@@ -148,7 +143,7 @@ struct GailBenchFlags {
 
 void add_bench_gail(CLI::App& bench) {
   auto f = std::make_shared<GailBenchFlags>();
-  f->gail.demos = "data/walker/demos.h5";
+  f->gail.demos = kPublishedWalkerDemos;
   CLI::App* c = bench.add_subcommand(
       "gail", "seconds per fine-tuning iteration by phase, env steps/s against the physics ceiling "
               "(default: the published walker demonstrations and VAE)");
@@ -160,7 +155,7 @@ void add_bench_gail(CLI::App& bench) {
       ->check(CLI::Range(0.1, 3600.0))->capture_default_str();
   c->callback([f] {
     GailFlags flags = f->gail;
-    if (flags.mode == "diverse" && flags.vae.empty()) flags.vae = "checkpoints/walker/vae/checkpoints/latest.pt";
+    if (flags.mode == "diverse" && flags.vae.empty()) flags.vae = kPublishedWalkerVae;
     const vae::TrajectoryVae model = mode_vae(flags);
     const DemoSet demos = read_demos(flags.demos);
     GailBenchOptions options = f->bench;

@@ -7,6 +7,7 @@
 #include "bench/physics_bench.h"
 #include "cli/app.h"
 #include "cli/commands.h"
+#include "cli/task_options.h"
 #include "env/walker.h"
 
 namespace vaegail::cli {
@@ -15,8 +16,8 @@ namespace {
 
 struct QuickstartOptions {
   std::string out_dir = "runs/quickstart";
-  std::string demos = "data/walker/demos.h5";
-  std::string vae = "checkpoints/walker/vae/checkpoints/latest.pt";
+  std::string demos = kPublishedWalkerDemos;
+  std::string vae = kPublishedWalkerVae;
   double gail_minutes = 4, plain_minutes = 2;
   int bc_epochs = 5;
   int per_expert = 3;

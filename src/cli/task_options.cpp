@@ -37,11 +37,22 @@ torch::Device parse_device(const std::string& name) {
   throw std::invalid_argument("--device must be cpu or cuda, not '" + name + "'");
 }
 
+CLI::Option* add_device_option(CLI::App& command, std::string& device, const std::string& description) {
+  return command.add_option("--device", device, description)->check(CLI::IsMember({"cpu", "cuda"}))->capture_default_str();
+}
+
 EnvRequest demo_env_request(const DemoSet& demos) {
   EnvRequest request;
   request.task = demos.header.env_id;
   for (const auto& e : demos.episodes) request.episode_length = std::max(request.episode_length, e.length());
   return request;
+}
+
+std::unique_ptr<Env> demo_env(const DemoSet& demos, const vae::TrajectoryVae& model) {
+  auto env = demo_env(demos);
+  if (env->obs_dim() != model->config().state_dim || env->act_dim() != model->config().action_dim)
+    throw std::invalid_argument("env '" + demos.header.env_id + "' does not match the VAE's dimensions");
+  return env;
 }
 
 }  // namespace vaegail::cli

@@ -9,6 +9,7 @@
 
 #include "data/demos.h"
 #include "env/registry.h"
+#include "vae/trajectory_vae.h"
 
 namespace vaegail::cli {
 
@@ -22,11 +23,20 @@ struct TaskOptions {
   std::unique_ptr<Env> make() const { return make_env(request()); }
 };
 
+// The published walker artefacts, the defaults of the commands that start from them.
+inline const std::string kPublishedWalkerDemos = "data/walker/demos.h5";
+inline const std::string kPublishedWalkerVae = "checkpoints/walker/vae/checkpoints/latest.pt";
+
 // "cpu" or "cuda"; throws (one line) if CUDA is asked for and this LibTorch has none.
 torch::Device parse_device(const std::string& name);
+// --device, restricted to cpu and cuda.
+CLI::Option* add_device_option(CLI::App& command, std::string& device,
+                               const std::string& description = "where the networks run (cpu, cuda)");
 
 // The environment the demonstrations were recorded in, with episodes as long as the longest.
 EnvRequest demo_env_request(const DemoSet& demos);
 inline std::unique_ptr<Env> demo_env(const DemoSet& demos) { return make_env(demo_env_request(demos)); }
+// The same, checked against the VAE's state and action dimensions (one-line error otherwise).
+std::unique_ptr<Env> demo_env(const DemoSet& demos, const vae::TrajectoryVae& model);
 
 }  // namespace vaegail::cli

@@ -28,10 +28,7 @@ using vae::TrajectoryVae;
 
 namespace {
 
-CLI::Option* add_device_option(CLI::App& command, std::string& device) {
-  return command.add_option("--device", device, "cpu, or cuda (the state decoder then runs its conv1d path)")
-      ->capture_default_str();
-}
+constexpr const char* kDeviceHelp = "cpu, or cuda (the state decoder then runs its conv1d path)";
 
 void require_dims_match(const TrajectoryVae& model, const DemoSet& demos) {
   const auto& c = model->config();
@@ -56,14 +53,6 @@ torch::Tensor encode_with_progress(TrajectoryVae& model, const DemoSet& demos, c
   return mu;
 }
 
-// The demonstrations' environment, checked against the VAE's dimensions.
-std::unique_ptr<Env> demo_env(const DemoSet& demos, const TrajectoryVae& model) {
-  auto env = cli::demo_env(demos);
-  if (env->obs_dim() != model->config().state_dim || env->act_dim() != model->config().action_dim)
-    throw std::invalid_argument("env '" + demos.header.env_id + "' does not match the checkpoint's VAE dimensions");
-  return env;
-}
-
 struct ModelFlags {
   std::string checkpoint, demos, device = "cpu";
 };
@@ -71,7 +60,7 @@ struct ModelFlags {
 void add_model_flags(CLI::App& command, ModelFlags& f) {
   command.add_option("--checkpoint", f.checkpoint, "trainer checkpoint (RUN_DIR/checkpoints/latest.pt)")->required();
   command.add_option("--demos", f.demos, "demonstration file (.h5)")->required();
-  add_device_option(command, f.device);
+  add_device_option(command, f.device, kDeviceHelp);
 }
 
 struct Loaded {
@@ -148,7 +137,7 @@ void add_train(CLI::App& vae) {
   c->add_option("--batch-size", f->batch_size, "trajectories per step (default: the config's, 32)")->check(CLI::Range(1, 1 << 20));
   c->add_option("--lr", f->lr, "Adam learning rate (default: the config's, 1e-4)")->check(CLI::PositiveNumber);
   c->add_option("--seed", f->seed, "initialisation, shuffling, noise and the validation split")->capture_default_str();
-  add_device_option(*c, f->device);
+  add_device_option(*c, f->device, kDeviceHelp);
   c->callback([f] { run_train(*f); });
 }
 
