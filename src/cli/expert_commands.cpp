@@ -1,15 +1,18 @@
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <numeric>
 #include <thread>
 
 #include "cli/commands.h"
 #include "cli/task_options.h"
+#include "experts/arm_expert.h"
 #include "experts/demo_collection.h"
 #include "experts/expert_eval.h"
 #include "experts/expert_trainer.h"
 #include "util/atomic_file.h"
+#include "util/json_file.h"
 #include "util/progress.h"
 
 namespace vaegail::cli {
@@ -27,43 +30,32 @@ struct TrainFlags {
   std::int64_t steps = 0;
   int jobs = 1;
   std::string device = "cpu";
+  int count = 60;              // arm: experts, each with its own random target
+  std::uint64_t seed = 0;      // arm: the targets' stream
 };
 
-void require_walker(const std::string& task) {
-  if (task != "walker") throw std::invalid_argument("experts: only --task walker is supported so far, not '" + task + "'");
+void require_known_task(const std::string& task) {
+  if (task != "walker" && task != "arm")
+    throw std::invalid_argument("experts: --task is walker or arm, not '" + task + "'");
 }
 
-std::vector<ExpertSpec> selected(const ExpertGrid& grid, const std::vector<std::string>& only) {
-  std::vector<ExpertSpec> specs;
-  for (const auto& s : expand(grid))
+template <class Spec>
+std::vector<Spec> selected(const std::vector<Spec>& all, const std::vector<std::string>& only) {
+  std::vector<Spec> specs;
+  for (const auto& s : all)
     if (only.empty() || std::find(only.begin(), only.end(), s.id) != only.end()) specs.push_back(s);
-  if (specs.empty()) throw std::invalid_argument("no expert of the grid matches --only");
+  if (specs.empty()) throw std::invalid_argument("no expert of the set matches --only");
   return specs;
 }
 
-void run_train(const TrainFlags& f) {
-  require_walker(f.task);
-  ExpertGrid grid = f.grid == "small" ? small_walker_grid() : paper_walker_grid();
-  ExpertTrainOptions options;
-  if (!f.config.empty()) {
-    const auto j = nlohmann::json::parse(read_file(f.config));
-    if (j.contains("grid")) grid = j["grid"].get<ExpertGrid>();
-    if (j.contains("training")) options = j["training"].get<ExpertTrainOptions>();
-  }
-  if (f.steps > 0) options.total_steps = f.steps;
-  options.device = f.device;
-  const auto specs = selected(grid, f.only);
-  fs::create_directories(f.out_dir);
-  std::printf("training %zu expert(s) into %s, %lld steps each, %d at a time\n", specs.size(), f.out_dir.c_str(),
-              static_cast<long long>(options.total_steps), f.jobs);
-  Progress progress("experts", static_cast<std::int64_t>(specs.size()) * options.total_steps, "steps");
-  std::mutex mutex;
-  // Steps already trained count as done from the start, so a resumed job's rate and ETA
-  // measure only new work.
-  std::vector<std::int64_t> done(specs.size(), 0);
-  for (size_t i = 0; i < specs.size(); ++i)
-    done[i] = std::min(expert_steps(f.out_dir + "/" + specs[i].id), options.total_steps);
+// Trains experts `jobs` at a time (one thread each) under one progress bar. train(i, report)
+// trains expert i and calls report(steps done) as it goes; done[i] holds the steps a resumed
+// run already has, counted as done from the start so the rate and ETA measure only new work.
+void train_in_parallel(const std::vector<std::string>& ids, std::vector<std::int64_t> done, std::int64_t steps_each,
+                       int jobs, const std::function<void(size_t, const std::function<void(std::int64_t)>&)>& train) {
+  Progress progress("experts", static_cast<std::int64_t>(ids.size()) * steps_each, "steps");
   progress.resume(std::accumulate(done.begin(), done.end(), std::int64_t{0}));
+  std::mutex mutex;
   size_t next = 0;
   std::exception_ptr error;
   auto worker = [&] {
@@ -71,17 +63,15 @@ void run_train(const TrainFlags& f) {
       size_t i;
       {
         std::lock_guard<std::mutex> lock(mutex);
-        if (next >= specs.size() || error) return;
+        if (next >= ids.size() || error) return;
         i = next++;
       }
       try {
-        train_expert(specs[i], options, f.out_dir + "/" + specs[i].id, [&, i](std::int64_t steps) {
+        train(i, [&, i](std::int64_t steps) {
           std::lock_guard<std::mutex> lock(mutex);
           done[i] = steps;
-          std::int64_t total = 0;
-          for (auto d : done) total += d;
-          progress.set_status(specs[i].id);
-          progress.set(total);
+          progress.set_status(ids[i]);
+          progress.set(std::accumulate(done.begin(), done.end(), std::int64_t{0}));
         });
       } catch (...) {
         std::lock_guard<std::mutex> lock(mutex);
@@ -90,10 +80,70 @@ void run_train(const TrainFlags& f) {
     }
   };
   std::vector<std::thread> threads;
-  for (int j = 0; j < f.jobs; ++j) threads.emplace_back(worker);
+  for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
   for (auto& t : threads) t.join();
   if (error) std::rethrow_exception(error);
   progress.finish();
+}
+
+void run_train_walker(const TrainFlags& f) {
+  ExpertGrid grid = f.grid == "small" ? small_walker_grid() : paper_walker_grid();
+  ExpertTrainOptions options;
+  if (!f.config.empty()) {
+    const auto j = read_json_file(f.config);
+    if (j.contains("grid")) grid = j["grid"].get<ExpertGrid>();
+    if (j.contains("training")) options = j["training"].get<ExpertTrainOptions>();
+  }
+  if (f.steps > 0) options.total_steps = f.steps;
+  options.device = f.device;
+  const auto specs = selected(expand(grid), f.only);
+  fs::create_directories(f.out_dir);
+  std::printf("training %zu expert(s) into %s, %lld steps each, %d at a time\n", specs.size(), f.out_dir.c_str(),
+              static_cast<long long>(options.total_steps), f.jobs);
+  std::vector<std::string> ids;
+  std::vector<std::int64_t> done;
+  for (const auto& s : specs) {
+    ids.push_back(s.id);
+    done.push_back(std::min(expert_steps(f.out_dir + "/" + s.id), options.total_steps));
+  }
+  train_in_parallel(ids, done, options.total_steps, f.jobs, [&](size_t i, const auto& report) {
+    train_expert(specs[i], options, f.out_dir + "/" + specs[i].id, report);
+  });
+}
+
+// The arm's experts train on the CPU whatever --device says: DDPG's one-sample steps would
+// spend their time in transfers.
+void run_train_arm(const TrainFlags& f) {
+  ArmExpertOptions options;
+  if (!f.config.empty()) {
+    const auto j = read_json_file(f.config);
+    if (j.contains("training")) options = j["training"].get<ArmExpertOptions>();
+  }
+  if (f.steps > 0) options.total_steps = f.steps;
+  const auto specs = selected(arm_expert_specs(f.count, f.seed), f.only);
+  fs::create_directories(f.out_dir);
+  std::printf("training %zu reaching expert(s) into %s, %lld steps each, %d at a time\n", specs.size(),
+              f.out_dir.c_str(), static_cast<long long>(options.total_steps), f.jobs);
+  std::vector<std::string> ids;
+  std::vector<std::int64_t> done;
+  for (const auto& s : specs) {
+    ids.push_back(s.id);
+    done.push_back(arm_expert_done(f.out_dir + "/" + s.id) ? options.total_steps : 0);
+  }
+  std::vector<ArmExpertResult> results(specs.size());
+  train_in_parallel(ids, done, options.total_steps, f.jobs, [&](size_t i, const auto& report) {
+    results[i] = train_arm_expert(specs[i], options, f.out_dir + "/" + specs[i].id, report);
+  });
+  std::printf("%-10s %28s %12s %16s\n", "expert", "target (m)", "best return", "final dist (cm)");
+  for (size_t i = 0; i < specs.size(); ++i)
+    std::printf("%-10s (%7.3f, %7.3f, %7.3f) %12.2f %16.1f\n", specs[i].id.c_str(), specs[i].target[0],
+                specs[i].target[1], specs[i].target[2], results[i].best_return, 100 * results[i].final_distance);
+}
+
+void run_train(const TrainFlags& f) {
+  require_known_task(f.task);
+  if (f.task == "arm") return run_train_arm(f);
+  run_train_walker(f);
 }
 
 std::vector<std::string> expert_dirs(const std::string& root, const std::vector<std::string>& only) {
@@ -136,7 +186,10 @@ void run_eval(const EvalFlags& f) {
 }
 
 struct CollectFlags {
+  std::string task = "walker";
   std::string dir = "experts/walker";
+  int episodes = 0;  // 0: the task's paper value (walker 20, arm 30)
+  double noise = ArmCollectOptions{}.noise_std;
   std::vector<std::string> only;
   std::string out;
   std::vector<std::string> held_out;
@@ -155,11 +208,29 @@ void run_collect(CollectFlags f) {
     if (only.empty()) throw std::runtime_error(f.passing + ": no expert passes the bar");
   }
   const auto dirs = expert_dirs(f.dir, only);
-  f.collect.held_out.insert(f.held_out.begin(), f.held_out.end());
-  Progress progress("collect", static_cast<std::int64_t>(dirs.size()) * f.collect.episodes_per_expert, "episodes");
-  collect_demos(dirs, f.out, f.collect, &progress);
-  progress.finish();
-  std::printf("wrote %s: %zu experts x %d episodes\n", f.out.c_str(), dirs.size(), f.collect.episodes_per_expert);
+  for (const auto& id : f.held_out)
+    if (std::none_of(dirs.begin(), dirs.end(), [&](const std::string& d) { return fs::path(d).filename() == id; }))
+      throw std::invalid_argument("--held-out " + id + ": no such expert in " + f.dir);
+  int episodes = f.episodes;
+  if (f.task == "arm") {
+    ArmCollectOptions o;
+    if (episodes > 0) o.episodes_per_expert = episodes;
+    episodes = o.episodes_per_expert;
+    o.noise_std = f.noise;
+    o.seed = f.collect.seed;
+    o.held_out = f.held_out;
+    Progress progress("collect", static_cast<std::int64_t>(dirs.size()) * episodes, "episodes");
+    collect_arm_demos(dirs, f.out, o, &progress);
+    progress.finish();
+  } else {
+    if (episodes > 0) f.collect.episodes_per_expert = episodes;
+    episodes = f.collect.episodes_per_expert;
+    f.collect.held_out.insert(f.held_out.begin(), f.held_out.end());
+    Progress progress("collect", static_cast<std::int64_t>(dirs.size()) * episodes, "episodes");
+    collect_demos(dirs, f.out, f.collect, &progress);
+    progress.finish();
+  }
+  std::printf("wrote %s: %zu experts x %d episodes\n", f.out.c_str(), dirs.size(), episodes);
 }
 
 }  // namespace
@@ -170,14 +241,17 @@ void add_expert_commands(CLI::App& app) {
 
   auto t = std::make_shared<TrainFlags>();
   CLI::App* train = experts->add_subcommand("train", "train target-speed experts with PPO (resumable)");
-  train->add_option("--task", t->task, "task (walker)")->capture_default_str();
+  train->add_option("--task", t->task, "walker (PPO, target speeds) or arm (DDPG, random reach targets)")
+      ->check(CLI::IsMember({"walker", "arm"}))->capture_default_str();
   train->add_option("--out-dir", t->out_dir, "one run directory per expert goes here")->capture_default_str();
   train->add_option("--grid", t->grid, "paper: 72 experts (6 speed groups x 4 log-std x 3 seeds); small: 12")
       ->check(CLI::IsMember({"paper", "small"}))->capture_default_str();
-  train->add_option("--config", t->config, "JSON with optional 'grid' and 'training' objects (e.g. configs/walker_experts_published.json)")
+  train->add_option("--config", t->config, "JSON with optional 'grid' (walker) and 'training' objects (e.g. configs/walker_experts_published.json)")
       ->check(CLI::ExistingFile);
   train->add_option("--only", t->only, "train only these expert ids");
   train->add_option("--steps", t->steps, "environment steps per expert (overrides the config)")->check(CLI::Range(int64_t{1}, int64_t{1} << 40));
+  train->add_option("--count", t->count, "arm: number of experts (the paper: 60)")->check(CLI::Range(1, 10000))->capture_default_str();
+  train->add_option("--seed", t->seed, "arm: seed of the targets and of training")->capture_default_str();
   train->add_option("--jobs", t->jobs, "experts trained at once (one core each)")->check(CLI::Range(1, 64))->capture_default_str();
   add_device_option(*train, t->device);
   train->callback([t] { run_train(*t); });
@@ -196,14 +270,18 @@ void add_expert_commands(CLI::App& app) {
   CLI::App* demos = app.add_subcommand("demos", "demonstration sets from experts");
   demos->require_subcommand(1);
   CLI::App* collect = demos->add_subcommand("collect", "roll experts out into an HDF5 demonstration file");
+  collect->add_option("--task", c->task, "walker or arm (the experts' kind)")
+      ->check(CLI::IsMember({"walker", "arm"}))->capture_default_str();
   collect->add_option("--experts-dir", c->dir, "directory of expert runs")->capture_default_str();
   collect->add_option("--only", c->only, "collect only from these expert ids");
   collect->add_option("--passing", c->passing, "collect only from experts that pass in this `experts eval --json` report")
       ->check(CLI::ExistingFile);
   collect->add_option("--out", c->out, "output .h5 file")->required();
-  collect->add_option("--episodes-per-expert", c->collect.episodes_per_expert, "episodes per expert")
-      ->check(CLI::Range(1, 100000))->capture_default_str();
-  collect->add_flag("--stochastic", c->collect.stochastic, "sample actions (default: mean actions)");
+  collect->add_option("--episodes-per-expert", c->episodes, "episodes per expert (default: walker 20, arm 30, as the paper)")
+      ->check(CLI::Range(1, 100000));
+  collect->add_flag("--stochastic", c->collect.stochastic, "walker: sample actions (default: mean actions)");
+  collect->add_option("--noise", c->noise, "arm: std (rad) of the Gaussian noise on the expert's joint commands")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   collect->add_option("--held-out", c->held_out, "expert ids marked held_out = 1 (kept out of VAE training)");
   collect->add_option("--seed", c->collect.seed, "episode seeds")->capture_default_str();
   collect->add_flag("--force", c->force, "replace an existing output file");

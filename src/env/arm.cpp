@@ -75,18 +75,12 @@ std::vector<double> ArmEnv::random_target(Rng& rng) {
   return target;
 }
 
-double ArmEnv::task_reward(double target_distance, const float* action, int act_dim) {
-  const double reach = 0.5 * std::max(0.0, 1.0 - target_distance / 0.5) +
-                       0.5 * std::exp(-(target_distance / 0.05) * (target_distance / 0.05));
-  double effort = 0.0;
-  for (int a = 0; a < act_dim; ++a) {
-    const double u = std::clamp(static_cast<double>(action[a]), -1.0, 1.0);
-    effort += u * u;
-  }
-  return reach - 0.01 * effort / act_dim;
+double ArmEnv::task_reward(double target_distance) {
+  return 0.5 * std::max(0.0, 1.0 - target_distance) +
+         0.5 * std::exp(-(target_distance / 0.05) * (target_distance / 0.05));
 }
 
-double ArmEnv::reward(const float* action) const { return task_reward(target_distance(), action, kJoints); }
+double ArmEnv::reward(const float*) const { return task_reward(target_distance()); }
 
 void ArmEnv::initialize_episode(Rng&) {}  // the home pose: mj_resetData's qpos0 and zero velocity
 

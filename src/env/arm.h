@@ -1,7 +1,8 @@
 // The reaching task (models/arm.xml, the paper's Jaco experiment): 9 DoF (6 arm joints, 3
-// fingers), 9 motors, control step 0.05 s, 50-step episodes (2.5 s), every episode from the
+// fingers), 9 position servos, control step 0.05 s, 50-step episodes (2.5 s), every episode from the
 // same home configuration (qpos = qvel = 0; the seed does not move it). Context: the target
-// position (x, y, z) in metres, in the table-top workspace.
+// position (x, y, z) in metres, in the table-top workspace. Actions are joint-angle commands
+// (rad) to position servos, bounded by the joint ranges.
 //
 // Observation layout (21 floats):
 //   0..8    joint angles    arm_1..arm_6, finger_1..finger_3 (rad)
@@ -12,10 +13,11 @@
 //
 // Features: grip_x, grip_y, grip_z (m), target_distance (m, grip to target).
 //
-// Reward for the expert stage, in [-0.01, 1]:
-//   0.5 * max(0, 1 - d / 0.5) + 0.5 * exp(-(d / 0.05)^2) - 0.01 * mean(a^2)
-// The linear term pulls from anywhere in the workspace, the sharp one pays for being on the
-// target and staying there (every step counts), the control cost asks for smooth motion.
+// Reward for the expert stage, in [0, 1]:
+//   0.5 * max(0, 1 - d / 1 m) + 0.5 * exp(-(d / 0.05)^2)
+// The linear term pulls from anywhere in the workspace (no target is 1 m from the home grip), the sharp one pays for being on the
+// target and staying there (every step counts). No control cost: the servos' damping already
+// makes the motion smooth, and a cost on angle commands would bias the reached pose.
 #pragma once
 
 #include <array>
@@ -46,7 +48,7 @@ class ArmEnv : public MujocoEnv {
   double target_distance() const;
   // A target drawn uniformly from the workspace box.
   static std::vector<double> random_target(Rng& rng);
-  static double task_reward(double target_distance, const float* action, int act_dim);
+  static double task_reward(double target_distance);
 
  protected:
   void initialize_episode(Rng& rng) override;

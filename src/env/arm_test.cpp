@@ -87,12 +87,34 @@ TEST(Arm, ObservationAndDistanceFollowTheSimulatorState) {
 }
 
 TEST(Arm, RewardMatchesHandComputedValues) {
-  const std::vector<float> rest(9, 0.0f), full(9, 1.0f);
-  EXPECT_NEAR(ArmEnv::task_reward(0.0, rest.data(), 9), 1.0, 1e-12);
-  EXPECT_NEAR(ArmEnv::task_reward(0.0, full.data(), 9), 0.99, 1e-12);
-  EXPECT_NEAR(ArmEnv::task_reward(0.05, rest.data(), 9), 0.5 * 0.9 + 0.5 * std::exp(-1.0), 1e-12);
-  EXPECT_NEAR(ArmEnv::task_reward(0.25, rest.data(), 9), 0.25 + 0.5 * std::exp(-25.0), 1e-12);
-  EXPECT_NEAR(ArmEnv::task_reward(0.8, full.data(), 9), -0.01, 1e-12);
+  EXPECT_NEAR(ArmEnv::task_reward(0.0), 1.0, 1e-12);
+  EXPECT_NEAR(ArmEnv::task_reward(0.05), 0.5 * 0.95 + 0.5 * std::exp(-1.0), 1e-12);
+  EXPECT_NEAR(ArmEnv::task_reward(0.25), 0.375 + 0.5 * std::exp(-25.0), 1e-12);
+  EXPECT_NEAR(ArmEnv::task_reward(0.8), 0.1 + 0.5 * std::exp(-256.0), 1e-12);
+  EXPECT_NEAR(ArmEnv::task_reward(1.5), 0.0, 1e-12);
+}
+
+TEST(Arm, ServosSettleOnTheCommandedAnglesWithinHalfASecond) {
+  ArmEnv env;
+  env.reset(0);
+  // A pose in front of the base: every arm joint commanded away from home.
+  const std::vector<float> command = {0.4f, 0.6f, 0.3f, -0.5f, 0.5f, 0.3f, 0.7f, -0.7f, -0.7f};
+  std::vector<float> overshoot(9, 0.0f);
+  for (int t = 0; t < 20; ++t) {
+    env.step(command.data());
+    const auto obs = env.observation();
+    for (int j = 0; j < 9; ++j)
+      overshoot[j] = std::max(overshoot[j], command[j] > 0 ? obs[j] - command[j] : command[j] - obs[j]);
+    if (t == 9) {  // 0.5 s
+      for (int j = 0; j < 9; ++j) EXPECT_NEAR(obs[j], command[j], 0.12) << "joint " << j;
+    }
+  }
+  const auto obs = env.observation();
+  for (int j = 0; j < 9; ++j) {
+    EXPECT_NEAR(obs[j], command[j], 0.12) << "joint " << j;  // gravity sag only
+    EXPECT_LT(std::abs(obs[9 + j]), 0.05) << "joint " << j;  // and at rest
+    EXPECT_LT(overshoot[j], 0.1) << "joint " << j;           // about critically damped
+  }
 }
 
 TEST(Arm, TargetsLieInTheWorkspaceAndWithinReach) {
@@ -119,7 +141,8 @@ TEST(Arm, TheTableTopStopsTheLinks) {
   double lowest_grip = 1.0, lowest_body = 1.0;
   for (int t = 0; t < 4 * env.episode_length(); ++t) {
     for (auto& u : a) u = static_cast<float>(rng.uniform(-1, 1));
-    a[1] = 1.0f;  // drive the shoulder down towards the table
+    a[1] = 2.0f;  // drive the shoulder down towards the table
+    a[2] = 1.0f;
     env.step(a.data());
     lowest_grip = std::min(lowest_grip, env.grip_position()[2]);
     // Every link's frame sits on its geom's axis, at least the geom's radius above a contact.

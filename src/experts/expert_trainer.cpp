@@ -9,6 +9,7 @@
 #include "rl/update_batch.h"
 #include "util/atomic_file.h"
 #include "util/csv_log.h"
+#include "util/json_file.h"
 #include "util/rng.h"
 
 namespace vaegail {
@@ -56,14 +57,6 @@ std::shared_ptr<Agent> make_expert_agent(const ExpertSpec& spec, const ExpertTra
 
 namespace {
 
-nlohmann::json read_json(const std::string& path) {
-  try {
-    return nlohmann::json::parse(read_file(path));
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(path + ": malformed JSON: " + e.what());
-  }
-}
-
 struct RunState {
   int iteration = 0;
   std::int64_t steps = 0;
@@ -75,7 +68,7 @@ RunState read_state(const std::string& run_dir) {
   RunState s;
   const std::string path = run_dir + "/state.json";
   if (!fs::exists(path)) return s;
-  const auto j = read_json(path);
+  const auto j = read_json_file(path);
   s.iteration = j.at("iteration");
   s.steps = j.at("steps");
   s.done = j.at("done");
@@ -117,7 +110,7 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
   fs::create_directories(run_dir);
   const std::string spec_path = run_dir + "/spec.json";
   if (fs::exists(spec_path)) {
-    const ExpertSpec existing = read_json(spec_path).get<ExpertSpec>();
+    const ExpertSpec existing = read_json_file(spec_path).get<ExpertSpec>();
     if (existing.id != spec.id)
       throw std::runtime_error(run_dir + " holds expert " + existing.id + ", not " + spec.id);
   } else {
@@ -182,8 +175,8 @@ LoadedExpert load_expert(const std::string& run_dir) {
     if (!fs::exists(run_dir + "/" + file))
       throw std::runtime_error(run_dir + ": not an expert run (missing " + file + ")");
   LoadedExpert e;
-  e.spec = read_json(run_dir + "/spec.json").get<ExpertSpec>();
-  e.options = read_json(run_dir + "/options.json").get<ExpertTrainOptions>();
+  e.spec = read_json_file(run_dir + "/spec.json").get<ExpertSpec>();
+  e.options = read_json_file(run_dir + "/options.json").get<ExpertTrainOptions>();
   WalkerEnv prototype;
   e.agent = make_expert_agent(e.spec, e.options, prototype.obs_dim(), prototype.act_dim());
   e.agent->load_checkpoint(run_dir + "/agent.pt");

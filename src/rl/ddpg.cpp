@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "util/atomic_file.h"
 #include "util/rng.h"
 
 namespace vaegail {
@@ -57,7 +58,11 @@ Ddpg::Ddpg(int obs_dim, const BoxSpec& action_spec, DdpgOptions options)
   low_ = torch::tensor(std::vector<double>(action_spec.low), torch::kFloat32);
   high_ = torch::tensor(std::vector<double>(action_spec.high), torch::kFloat32);
   torch::manual_seed(options_.seed);
-  const auto make_actor = [&] { return std::make_shared<Mlp>(obs_dim, options_.actor_hidden, act_dim, Activation::Relu); };
+  // A small output gain starts the actor in the middle of the action box, far from tanh's
+  // flat tails where its gradient vanishes.
+  const auto make_actor = [&] {
+    return std::make_shared<Mlp>(obs_dim, options_.actor_hidden, act_dim, Activation::Relu, 0.1);
+  };
   const auto make_critic = [&] {
     return std::make_shared<Mlp>(obs_dim + act_dim, options_.critic_hidden, 1, Activation::Relu);
   };
@@ -99,9 +104,10 @@ DdpgStats Ddpg::update(const ReplayBuffer::Batch& b) {
   critic_optimizer_->step();
   stats.critic_loss = critic_loss.item<double>();
 
-  const auto objective = q(b.obs, act(b.obs)).mean();
+  const auto pre_activation = actor_->forward(b.obs);
+  const auto objective = q(b.obs, squash(pre_activation)).mean();
   actor_optimizer_->zero_grad();
-  (-objective).backward();  // the critic's gradients from this pass are cleared before its next step
+  (options_.pre_activation_penalty * pre_activation.pow(2).mean() - objective).backward();  // the critic's gradients from this pass are cleared before its next step
   actor_optimizer_->step();
   stats.actor_objective = objective.item<double>();
 
@@ -123,11 +129,12 @@ std::vector<float> Ddpg::explore(const std::vector<float>& obs, int64_t step) {
   return std::vector<float>(action.data_ptr<float>(), action.data_ptr<float>() + act_dim);
 }
 
-void Ddpg::train(Env& env, int64_t steps) {
+DdpgStats Ddpg::train(Env& env, int64_t steps) {
+  DdpgStats stats;
   env.reset(derive_seed(options_.seed, episode_seed_++));
   auto obs = env.observation();
-  for (int64_t t = 0; t < steps; ++t) {
-    const auto action = explore(obs, t);
+  for (int64_t t = 0; t < steps; ++t, ++steps_trained_) {
+    const auto action = explore(obs, steps_trained_);
     const StepOutcome out = env.step(action.data());
     const auto next = env.observation();
     buffer_.add(obs.data(), action.data(), out.reward, next.data(), out.terminated);
@@ -136,8 +143,35 @@ void Ddpg::train(Env& env, int64_t steps) {
       env.reset(derive_seed(options_.seed, episode_seed_++));
       obs = env.observation();
     }
-    if (buffer_.size() >= options_.batch_size) update(buffer_.sample(options_.batch_size, generator_));
+    if (buffer_.size() >= options_.batch_size) stats = update(buffer_.sample(options_.batch_size, generator_));
   }
+  return stats;
+}
+
+void Ddpg::save_actor(const std::string& path) {
+  write_atomically(path, [&](const std::string& tmp) {
+    torch::serialize::OutputArchive archive;
+    actor_->save(archive);
+    archive.save_to(tmp);
+  });
+}
+
+void Ddpg::load_actor(const std::string& path) {
+  // Module::load takes tensors of any shape, so the file is read into a scratch copy first.
+  Mlp loaded(actor_->in_dim(), options_.actor_hidden, actor_->out_dim(), Activation::Relu);
+  try {
+    torch::serialize::InputArchive archive;
+    archive.load_from(path);
+    loaded.load(archive);
+  } catch (const c10::Error& e) {
+    throw std::runtime_error(path + ": not a DDPG actor (" + e.what_without_backtrace() + ")");
+  }
+  const auto want = actor_->parameters(), have = loaded.parameters();
+  for (size_t i = 0; i < want.size(); ++i)
+    if (i >= have.size() || want[i].sizes() != have[i].sizes())
+      throw std::runtime_error(path + ": the actor's layer sizes differ from this DDPG's");
+  soft_update(*actor_, loaded, 1.0);
+  soft_update(*target_actor_, *actor_, 1.0);
 }
 
 double Ddpg::evaluate(const Env& prototype, int episodes, std::uint64_t base_seed) {

@@ -3,7 +3,8 @@
 // tracking target copies of both, a replay buffer, and Gaussian exploration noise.
 //
 //   critic:  minimise (Q(s, a) - y)^2,  y = r + γ (1 - terminated) Q'(s', μ'(s'))
-//   actor:   maximise Q(s, μ(s))
+//   actor:   maximise Q(s, μ(s)) - λ mean(u²), u the actor's output before tanh: the penalty
+//            keeps the actor out of tanh's saturated tails, where a stuck actor cannot recover
 //   targets: θ' ← τ θ + (1 - τ) θ'
 // Truncation by the time limit is not termination: the target still bootstraps there.
 #pragma once
@@ -12,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "env/env.h"
@@ -56,6 +58,7 @@ struct DdpgOptions {
   int64_t buffer_capacity = 1000000;
   double exploration_std = 0.2;  // Gaussian noise on the actor's action, in action units
   int warmup_steps = 500;        // uniform random actions before the actor takes over
+  double pre_activation_penalty = 1e-3;  // λ above
   std::uint64_t seed = 0;
 };
 
@@ -77,11 +80,18 @@ class Ddpg {
   // One critic step, one actor step, one target update.
   DdpgStats update(const ReplayBuffer::Batch& batch);
 
-  // Runs the environment for `steps` control steps (warm-up, then the noisy actor), storing
-  // every transition and updating once per step once the buffer holds a batch.
-  void train(Env& env, int64_t steps);
+  // Runs the environment for `steps` control steps from a fresh episode (warm-up until
+  // warmup_steps have been taken over all calls, then the noisy actor), storing every
+  // transition and updating once per step once the buffer holds a batch. Returns the last
+  // update's statistics (zeros if none ran).
+  DdpgStats train(Env& env, int64_t steps);
+  int64_t steps_trained() const { return steps_trained_; }
   // Mean return of `episodes` noise-free episodes, seeds base_seed, base_seed + 1, ...
   double evaluate(const Env& env, int episodes, std::uint64_t base_seed);
+
+  // The actor alone: what a trained expert needs to act (written atomically).
+  void save_actor(const std::string& path);
+  void load_actor(const std::string& path);
 
   ReplayBuffer& buffer() { return buffer_; }
   Mlp& actor() { return *actor_; }
@@ -100,6 +110,7 @@ class Ddpg {
   ReplayBuffer buffer_;
   torch::Generator generator_;
   std::uint64_t episode_seed_ = 0;
+  int64_t steps_trained_ = 0;
 };
 
 }  // namespace vaegail

@@ -67,6 +67,26 @@ TEST(Ddpg, ReplayBufferOverwritesItsOldestTransitions) {
 
 // The point mass with its target fixed at 0.5: the untrained actor scores about 2 of 50 from
 // starts in [-1, 1]; a policy that goes there and stays scores above 40.
+TEST(Ddpg, ASavedActorActsTheSameWhenLoadedAndAStrangeFileIsRefused) {
+  const BoxSpec box{{"a", "b"}, {-1.0, 0.0}, {1.0, 2.0}};
+  DdpgOptions options;
+  options.seed = 3;
+  Ddpg trained(4, box, options);
+  options.seed = 4;
+  Ddpg fresh(4, box, options);
+  const auto obs = torch::randn({5, 4});
+  ASSERT_FALSE(torch::allclose(trained.act(obs), fresh.act(obs)));
+  const std::string path = ::testing::TempDir() + "/ddpg_actor.pt";
+  trained.save_actor(path);
+  fresh.load_actor(path);
+  EXPECT_TRUE(torch::equal(trained.act(obs), fresh.act(obs)));
+  EXPECT_TRUE(torch::equal(trained.act(obs), fresh.target_actor().forward(obs).tanh().add(1).mul(0.5) *
+                                                 torch::tensor({2.0f, 2.0f}) + torch::tensor({-1.0f, 0.0f})));
+  options.actor_hidden = {8};
+  Ddpg other_shape(4, box, options);
+  EXPECT_THROW(other_shape.load_actor(path), std::runtime_error);
+}
+
 TEST(Ddpg, SolvesThePointMassTaskWithinAFixedBudget) {
   PointMassEnv env;
   env.set_context({0.5});
