@@ -14,7 +14,8 @@ void add_quickstart_command(CLI::App& app);
 void add_vae_commands(CLI::App& app);  // vae train/embed/knn/imitate/interpolate, bench vae
 void add_plot_commands(CLI::App& app);  // plot curves/tsne/histogram
 void add_gail_commands(CLI::App& app);  // gail train, bc train
-void add_eval_commands(CLI::App& app);  // eval walker
+void add_eval_commands(CLI::App& app);  // eval walker, eval arm
+void add_eval_arm(CLI::App& eval);
 
 struct TaskOptions;
 // Flags every command that simulates shares: which task, and how episodes end.

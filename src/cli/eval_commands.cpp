@@ -139,6 +139,7 @@ void add_eval_commands(CLI::App& app) {
   CLI::App* eval = app.add_subcommand("eval", "the paper's evaluations");
   eval->require_subcommand(1);
   add_eval_walker(*eval);
+  add_eval_arm(*eval);
 }
 
 }  // namespace vaegail::cli

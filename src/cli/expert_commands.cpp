@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -111,6 +112,27 @@ void run_train_walker(const TrainFlags& f) {
   });
 }
 
+// One line per reaching expert: its target, the best noise-free return (of 50) and the final
+// grip-to-target distance of that episode; then the median distance.
+std::string arm_expert_table(const std::vector<ArmExpertSpec>& specs, const std::vector<ArmExpertResult>& results) {
+  std::string out;
+  char line[160];
+  std::snprintf(line, sizeof line, "%-10s %28s %12s %16s\n", "expert", "target (m)", "best return", "final dist (cm)");
+  out += line;
+  std::vector<double> distances;
+  for (size_t i = 0; i < specs.size(); ++i) {
+    std::snprintf(line, sizeof line, "%-10s (%7.3f, %7.3f, %7.3f) %12.2f %16.1f\n", specs[i].id.c_str(),
+                  specs[i].target[0], specs[i].target[1], specs[i].target[2], results[i].best_return,
+                  100 * results[i].final_distance);
+    out += line;
+    distances.push_back(results[i].final_distance);
+  }
+  std::sort(distances.begin(), distances.end());
+  std::snprintf(line, sizeof line, "%zu experts, median final distance %.1f cm, worst %.1f cm\n", distances.size(),
+                100 * distances[distances.size() / 2], 100 * distances.back());
+  return out + line;
+}
+
 // The arm's experts train on the CPU whatever --device says: DDPG's one-sample steps would
 // spend their time in transfers.
 void run_train_arm(const TrainFlags& f) {
@@ -134,10 +156,7 @@ void run_train_arm(const TrainFlags& f) {
   train_in_parallel(ids, done, options.total_steps, f.jobs, [&](size_t i, const auto& report) {
     results[i] = train_arm_expert(specs[i], options, f.out_dir + "/" + specs[i].id, report);
   });
-  std::printf("%-10s %28s %12s %16s\n", "expert", "target (m)", "best return", "final dist (cm)");
-  for (size_t i = 0; i < specs.size(); ++i)
-    std::printf("%-10s (%7.3f, %7.3f, %7.3f) %12.2f %16.1f\n", specs[i].id.c_str(), specs[i].target[0],
-                specs[i].target[1], specs[i].target[2], results[i].best_return, 100 * results[i].final_distance);
+  std::fputs(arm_expert_table(specs, results).c_str(), stdout);
 }
 
 void run_train(const TrainFlags& f) {
@@ -166,8 +185,25 @@ struct EvalFlags {
   std::string json_out;
 };
 
+// Arm experts keep their noise-free evaluation (the start and the actor are deterministic).
+void run_eval_arm(const std::vector<std::string>& dirs, const std::string& json_out) {
+  std::vector<ArmExpertSpec> specs;
+  std::vector<ArmExpertResult> results;
+  nlohmann::json report = nlohmann::json::array();
+  for (const auto& d : dirs) {
+    const LoadedArmExpert e = load_arm_expert(d);
+    specs.push_back(e.spec);
+    results.push_back(e.result);
+    report.push_back({{"id", e.spec.id}, {"target", e.spec.target}, {"best_return", e.result.best_return},
+                      {"final_distance", e.result.final_distance}});
+  }
+  std::fputs(arm_expert_table(specs, results).c_str(), stdout);
+  if (!json_out.empty()) write_file_atomically(json_out, report.dump(2));
+}
+
 void run_eval(const EvalFlags& f) {
   const auto dirs = expert_dirs(f.dir, f.only);
+  if (fs::exists(fs::path(dirs.front()) / "actor.pt")) return run_eval_arm(dirs, f.json_out);
   std::vector<ExpertEvaluation> results;
   Progress progress("eval", static_cast<std::int64_t>(dirs.size()), "experts");
   nlohmann::json report = nlohmann::json::array();
@@ -211,6 +247,7 @@ void run_collect(CollectFlags f) {
   for (const auto& id : f.held_out)
     if (std::none_of(dirs.begin(), dirs.end(), [&](const std::string& d) { return fs::path(d).filename() == id; }))
       throw std::invalid_argument("--held-out " + id + ": no such expert in " + f.dir);
+  if (fs::path(f.out).has_parent_path()) fs::create_directories(fs::path(f.out).parent_path());
   int episodes = f.episodes;
   if (f.task == "arm") {
     ArmCollectOptions o;
@@ -257,7 +294,7 @@ void add_expert_commands(CLI::App& app) {
   train->callback([t] { run_train(*t); });
 
   auto e = std::make_shared<EvalFlags>();
-  CLI::App* eval = experts->add_subcommand("eval", "mean speed, distance to target and fall rate per expert and target");
+  CLI::App* eval = experts->add_subcommand("eval", "walker: mean speed, distance to target and fall rate per expert and target; arm: final distance to the target");
   eval->add_option("--dir", e->dir, "directory of expert runs")->capture_default_str();
   eval->add_option("--only", e->only, "evaluate only these expert ids");
   eval->add_option("--episodes", e->eval.episodes_per_target, "episodes per target speed")->check(CLI::Range(1, 100000))->capture_default_str();

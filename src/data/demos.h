@@ -13,7 +13,8 @@
 //   /episode_{i}/features/{name} float64 [T+1]  one per feature, aligned with observations
 //   /episode_{i}            attrs: id, total_steps, expert_id, context (float64 [k]), seed,
 //                                  plus any extra float64 scalars (achieved_speed, held_out...)
-// Datasets are chunked, shuffled and deflated.
+// Datasets up to 8 KiB are stored compact (in their object header); larger ones are chunked,
+// shuffled and deflated.
 #pragma once
 
 #include <cstdint>

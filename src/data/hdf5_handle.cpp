@@ -31,6 +31,10 @@ void check(herr_t status, const std::string& what) {
 }
 }  // namespace
 
+namespace {
+constexpr hsize_t kCompactBytes = 8 * 1024;  // well under the 64 KiB an object header can hold
+}  // namespace
+
 void write_dataset(hid_t parent, const std::string& name, hid_t mem_type, hid_t file_type,
                    const std::vector<hsize_t>& dims, const void* data, const std::string& where) {
   Handle space = checked(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
@@ -38,7 +42,12 @@ void write_dataset(hid_t parent, const std::string& name, hid_t mem_type, hid_t 
   Handle plist = checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, where + ": property list");
   hsize_t elements = 1;
   for (hsize_t d : dims) elements *= d;
-  if (elements > 0) {
+  // Small datasets live in the object header: a chunked one costs kilobytes of index and
+  // header whatever its size, which tripled the arm's file (50-step episodes).
+  const bool small = elements * H5Tget_size(file_type) <= kCompactBytes;
+  if (elements > 0 && small) {
+    check(H5Pset_layout(plist.get(), H5D_COMPACT), where + ": compact layout");
+  } else if (elements > 0) {
     check(H5Pset_chunk(plist.get(), static_cast<int>(dims.size()), dims.data()), where + ": chunking");
     check(H5Pset_shuffle(plist.get()), where + ": shuffle filter");
     check(H5Pset_deflate(plist.get(), 4), where + ": deflate filter");

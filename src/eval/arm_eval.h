@@ -81,7 +81,6 @@ std::string interpolation_csv(const std::vector<InterpolationPair>& pairs);
 // row in the same colour. Figure 3's counterpart: a pair's paths for every alpha, coloured
 // from a (α = 0) to b (α = 1), demonstrations solid.
 plot::Canvas reach_paths_chart(const std::vector<ReachRow>& rows, const std::string& title);
-plot::Canvas interpolation_chart(const std::vector<InterpolationPair>& pairs, const DemoSet& demos,
-                                 const std::string& title);
+plot::Canvas interpolation_chart(const InterpolationPair& pair, const DemoSet& demos, const std::string& title);
 
 }  // namespace vaegail::eval

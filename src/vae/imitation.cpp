@@ -44,8 +44,8 @@ std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
   const int64_t M = static_cast<int64_t>(starts.size());
   if (z.dim() != 2 || z.size(0) != M)
     throw std::invalid_argument("roll_out_latent_policy: z must be [" + std::to_string(M) + ", Z]");
-  const int speed = feature_index(prototype, options.speed_feature);
-  if (speed < 0)
+  const int speed = options.speed_feature.empty() ? -1 : feature_index(prototype, options.speed_feature);
+  if (speed < 0 && !options.speed_feature.empty())
     throw std::invalid_argument("roll_out_latent_policy: env '" + prototype.id() +
                                 "' has no feature '" + options.speed_feature + "'");
   const auto z_cpu = z.detach().to(torch::kCPU, torch::kFloat).contiguous();
@@ -76,7 +76,7 @@ std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
   std::vector<ImitationOutcome> out;
   for (auto& e : episodes) {
     ImitationOutcome o;
-    o.achieved_speed = e.mean_feature(speed, n_features);
+    if (speed >= 0) o.achieved_speed = e.mean_feature(speed, n_features);
     o.fell = fell(e, fallen, n_features);
     o.episode = std::move(e);
     out.push_back(std::move(o));

@@ -37,12 +37,12 @@ std::vector<RolloutStart> rollout_starts(const DemoSet& demos, const std::vector
 struct ImitationOptions {
   int num_envs = 32;    // environments stepped together (the policy's batch)
   int num_threads = 1;  // threads stepping them
-  std::string speed_feature = "com_speed";
+  std::string speed_feature = "com_speed";  // empty for tasks without one (the arm)
   std::string fallen_feature = "fallen";  // optional; terminations count as falls too
 };
 
 struct ImitationOutcome {
-  double achieved_speed = 0;  // mean of speed_feature over the states the actions reached
+  double achieved_speed = 0;  // mean of speed_feature over the states the actions reached (0 without)
   bool fell = false;
   Episode episode;            // the whole rollout
 };

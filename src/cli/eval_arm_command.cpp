@@ -1,0 +1,185 @@
+// `vaegail eval arm`: the paper's arm experiment (section 4.1). The VAE policy imitates the
+// test experts' demonstrations (and some training ones) from the home pose; the end effector's
+// final distance to the demonstration's end point is summarised (Figure 2's paths drawn), and
+// pairs of test demonstrations from different experts are interpolated in latent space
+// (Figure 3), each pair judged by whether its reached end points move monotonically along the
+// segment between the demonstrations' end points.
+#include <torch/torch.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include "cli/commands.h"
+#include "cli/task_options.h"
+#include "eval/arm_eval.h"
+#include "eval/walker_eval.h"
+#include "util/atomic_file.h"
+#include "util/progress.h"
+#include "vae/vae_trainer.h"
+
+namespace vaegail::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct EvalArmFlags {
+  std::string demos, vae, out_dir, device = "cpu";
+  int training_per_expert = 3, pair_experts = 10, drawn_paths = 10, drawn_pairs = 3;
+  double monotone_tolerance = 0.0;
+  vae::ImitationOptions rollout;
+};
+
+// Every episode of the experts marked held out, in file order.
+std::vector<int64_t> held_out_episodes(const DemoSet& demos) {
+  std::vector<int64_t> out;
+  for (size_t i = 0; i < demos.episodes.size(); ++i) {
+    const auto it = demos.episodes[i].attributes.find("held_out");
+    if (it != demos.episodes[i].attributes.end() && it->second > 0.5) out.push_back(static_cast<int64_t>(i));
+  }
+  if (out.empty()) throw std::invalid_argument(demos.path + ": no episode is marked held_out (the test experts)");
+  return out;
+}
+
+std::vector<int64_t> training_episodes(const DemoSet& demos, int per_expert) {
+  std::vector<int64_t> out;
+  for (int64_t i : eval::episodes_per_expert(demos, per_expert)) {
+    const auto it = demos.episodes[i].attributes.find("held_out");
+    if (it == demos.episodes[i].attributes.end() || it->second < 0.5) out.push_back(i);
+  }
+  return out;
+}
+
+// The first test demonstration of each of the first `experts` test experts, every pair of them.
+std::vector<std::pair<int64_t, int64_t>> test_pairs(const DemoSet& demos, const std::vector<int64_t>& test, int experts) {
+  std::vector<int64_t> firsts;
+  std::map<std::string, bool> seen;
+  for (int64_t i : test)
+    if (!seen[demos.episodes[i].expert_id] && static_cast<int>(firsts.size()) < experts) {
+      seen[demos.episodes[i].expert_id] = true;
+      firsts.push_back(i);
+    }
+  std::vector<std::pair<int64_t, int64_t>> pairs;
+  for (size_t a = 0; a < firsts.size(); ++a)
+    for (size_t b = a + 1; b < firsts.size(); ++b) pairs.push_back({firsts[a], firsts[b]});
+  return pairs;
+}
+
+std::string distance_line(const std::string& which, const std::vector<eval::ReachRow>& rows, bool held_out) {
+  std::vector<double> d;
+  for (const auto& r : rows)
+    if (r.held_out == held_out) d.push_back(r.final_distance());
+  const auto s = eval::summarize_distances(d);
+  char line[200];
+  std::snprintf(line, sizeof line, "| %s | %d | %.1f | %.1f | %.1f |\n", which.c_str(), s.n, 100 * s.mean,
+                100 * s.median, 100 * s.p90);
+  return line;
+}
+
+std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pairs, double tolerance) {
+  int monotone = 0;
+  std::vector<double> off, off_relative, mid_along;
+  for (const auto& p : pairs) {
+    monotone += p.monotone(tolerance);
+    double length = 0;
+    for (int k = 0; k < 3; ++k) length += (p.demo_end_b[k] - p.demo_end_a[k]) * (p.demo_end_b[k] - p.demo_end_a[k]);
+    length = std::sqrt(length);
+    for (size_t k = 0; k < p.alphas.size(); ++k) {
+      off.push_back(p.off_line[k]);
+      off_relative.push_back(p.off_line[k] / length);
+      if (p.alphas[k] == 0.5) mid_along.push_back(p.along[k]);
+    }
+  }
+  char text[700];
+  std::snprintf(text, sizeof text,
+                "Latent interpolation over %zu pairs of test demonstrations (different experts), alpha in "
+                "{0, 0.25, 0.5, 0.75, 1}:\n\n"
+                "- end point moves monotonically from a's end to b's (tolerance %.2f of the segment): **%d of %zu "
+                "pairs (%.0f%%)**\n"
+                "- distance of the reached end points from the line through the two demonstrations' end points: "
+                "median %.1f cm, 90th percentile %.1f cm (median %.0f%% of the segment's length)\n"
+                "- at alpha 0.5 the end point lies at median s = %.2f along the segment (0: a's end, 1: b's end)\n",
+                pairs.size(), tolerance, monotone, pairs.size(), 100.0 * monotone / std::max<size_t>(pairs.size(), 1),
+                100 * vae::median(off), 100 * eval::summarize_distances(off).p90, 100 * vae::median(off_relative),
+                vae::median(mid_along));
+  return text;
+}
+
+void run_eval_arm(const EvalArmFlags& f) {
+  torch::NoGradGuard no_grad;
+  const auto device = parse_device(f.device);
+  if (!fs::exists(f.vae)) throw std::invalid_argument(f.vae + ": no such VAE checkpoint");
+  const DemoSet demos = read_demos(f.demos);
+  if (demos.header.env_id != "arm") throw std::invalid_argument(f.demos + ": recorded in '" + demos.header.env_id + "', not the arm");
+  auto model = vae::load_trained_vae(f.vae, device);
+  model->eval();
+  const auto env = demo_env(demos, model);
+  const auto policy = vae::vae_mean_policy(model, device);
+
+  const auto test = held_out_episodes(demos);
+  auto episodes = training_episodes(demos, f.training_per_expert);
+  episodes.insert(episodes.end(), test.begin(), test.end());
+  const auto pairs = test_pairs(demos, test, f.pair_experts);
+  Progress progress("eval arm", static_cast<std::int64_t>(episodes.size()), "rollouts");
+  const auto z = vae::encode_episodes(model, demos, episodes);
+  const auto rows = eval::imitate_reaches(*env, demos, episodes, z, policy, f.rollout, &progress);
+  progress.finish();
+  std::vector<int64_t> a, b;
+  for (const auto& [i, j] : pairs) {
+    a.push_back(i);
+    b.push_back(j);
+  }
+  const auto interpolations =
+      eval::interpolate_reaches(*env, demos, pairs, vae::encode_episodes(model, demos, a),
+                                vae::encode_episodes(model, demos, b), {0.0, 0.25, 0.5, 0.75, 1.0}, policy, f.rollout);
+
+  fs::create_directories(f.out_dir);
+  const std::string table =
+      "Final end-effector distance between the VAE policy's imitation and the demonstration (cm):\n\n"
+      "| demonstrations | n | mean | median | 90th percentile |\n|---|---|---|---|---|\n" +
+      distance_line("test experts (unseen)", rows, true) + distance_line("training experts", rows, false) + "\n" +
+      interpolation_summary(interpolations, f.monotone_tolerance);
+  write_file_atomically(f.out_dir + "/reaches.csv", eval::reach_rows_csv(rows));
+  write_file_atomically(f.out_dir + "/interpolation.csv", eval::interpolation_csv(interpolations));
+  write_file_atomically(f.out_dir + "/summary.md", table);
+
+  // Figure 2: one test demonstration per test expert and its imitation.
+  std::vector<eval::ReachRow> drawn;
+  std::map<std::string, bool> seen;
+  for (const auto& r : rows)
+    if (r.held_out && !seen[r.expert_id] && static_cast<int>(drawn.size()) < f.drawn_paths) {
+      seen[r.expert_id] = true;
+      drawn.push_back(r);
+    }
+  eval::reach_paths_chart(drawn, "test demonstrations (solid) and VAE imitations (dashed), seen from above")
+      .save_png(f.out_dir + "/reach_paths.png");
+  for (int p = 0; p < std::min<int>(f.drawn_pairs, interpolations.size()); ++p)
+    eval::interpolation_chart(interpolations[p], demos, "latent interpolation, pair " + std::to_string(p))
+        .save_png(f.out_dir + "/interpolation_pair_" + std::to_string(p) + ".png");
+  std::printf("\n%s\nwrote %s/{reaches.csv, interpolation.csv, summary.md, reach_paths.png, interpolation_pair_*.png}\n",
+              table.c_str(), f.out_dir.c_str());
+}
+
+}  // namespace
+
+void add_eval_arm(CLI::App& eval) {
+  auto f = std::make_shared<EvalArmFlags>();
+  CLI::App* c = eval.add_subcommand("arm", "imitate the arm's test demonstrations with the VAE policy (final "
+                                           "end-point distance) and interpolate between them in latent space");
+  c->add_option("--demos", f->demos, "arm demonstration file (.h5) with the test experts marked held_out")->required();
+  c->add_option("--vae", f->vae, "VAE checkpoint (RUN_DIR/checkpoints/latest.pt)")->required();
+  c->add_option("--out-dir", f->out_dir, "where the CSVs, the table and the PNGs go")->required();
+  c->add_option("--training-per-expert", f->training_per_expert, "training demonstrations imitated per expert, for comparison")
+      ->check(CLI::Range(0, 1 << 20))->capture_default_str();
+  c->add_option("--pair-experts", f->pair_experts, "test experts whose first demonstrations are paired (all pairs)")
+      ->check(CLI::Range(2, 1000))->capture_default_str();
+  c->add_option("--monotone-tolerance", f->monotone_tolerance, "allowed step back along the segment, as a fraction of it")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  c->add_option("--envs", f->rollout.num_envs, "environments stepped together")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  add_device_option(*c, f->device);
+  c->callback([f] { run_eval_arm(*f); });
+}
+
+}  // namespace vaegail::cli
