@@ -17,6 +17,7 @@
 #include "eval/walker_eval.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
+#include "vae/demo_dataset.h"
 #include "vae/vae_trainer.h"
 
 namespace vaegail::cli {
@@ -35,20 +36,16 @@ struct EvalArmFlags {
 // Every episode of the experts marked held out, in file order.
 std::vector<int64_t> held_out_episodes(const DemoSet& demos) {
   std::vector<int64_t> out;
-  for (size_t i = 0; i < demos.episodes.size(); ++i) {
-    const auto it = demos.episodes[i].attributes.find("held_out");
-    if (it != demos.episodes[i].attributes.end() && it->second > 0.5) out.push_back(static_cast<int64_t>(i));
-  }
+  for (size_t i = 0; i < demos.episodes.size(); ++i)
+    if (vae::is_held_out(demos.episodes[i])) out.push_back(static_cast<int64_t>(i));
   if (out.empty()) throw std::invalid_argument(demos.path + ": no episode is marked held_out (the test experts)");
   return out;
 }
 
 std::vector<int64_t> training_episodes(const DemoSet& demos, int per_expert) {
   std::vector<int64_t> out;
-  for (int64_t i : eval::episodes_per_expert(demos, per_expert)) {
-    const auto it = demos.episodes[i].attributes.find("held_out");
-    if (it == demos.episodes[i].attributes.end() || it->second < 0.5) out.push_back(i);
-  }
+  for (int64_t i : eval::episodes_per_expert(demos, per_expert))
+    if (!vae::is_held_out(demos.episodes[i])) out.push_back(i);
   return out;
 }
 
@@ -83,12 +80,9 @@ std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pa
   std::vector<double> off, off_relative, mid_along;
   for (const auto& p : pairs) {
     monotone += p.monotone(tolerance);
-    double length = 0;
-    for (int k = 0; k < 3; ++k) length += (p.demo_end_b[k] - p.demo_end_a[k]) * (p.demo_end_b[k] - p.demo_end_a[k]);
-    length = std::sqrt(length);
     for (size_t k = 0; k < p.alphas.size(); ++k) {
       off.push_back(p.off_line[k]);
-      off_relative.push_back(p.off_line[k] / length);
+      off_relative.push_back(p.off_line[k] / p.segment_length());
       if (p.alphas[k] == 0.5) mid_along.push_back(p.along[k]);
     }
   }

@@ -114,14 +114,14 @@ std::vector<Episode> record_episodes(const Env& prototype, const RecordRequest& 
 }
 
 BatchPolicy random_policy(const Env& env, std::uint64_t seed) {
-  auto streams = std::make_shared<std::map<int, Rng>>();
+  auto streams = std::make_shared<EpisodeStreams>(seed);
   const BoxSpec spec = env.action_spec();
-  return [streams, spec, seed](int n, const float*, const int* episodes, const int*, float* actions) {
+  return [streams, spec](int n, const float*, const int* episodes, const int*, float* actions) {
     const int act_dim = spec.dim();
     for (int b = 0; b < n; ++b) {
-      auto it = streams->try_emplace(episodes[b], derive_seed(seed, episodes[b])).first;
+      Rng& rng = (*streams)(episodes[b]);
       for (int a = 0; a < act_dim; ++a)
-        actions[b * act_dim + a] = static_cast<float>(it->second.uniform(spec.low[a], spec.high[a]));
+        actions[b * act_dim + a] = static_cast<float>(rng.uniform(spec.low[a], spec.high[a]));
     }
   };
 }

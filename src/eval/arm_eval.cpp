@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "plot/charts.h"
+#include "vae/demo_dataset.h"
 
 namespace vaegail::eval {
 
@@ -64,8 +65,7 @@ std::vector<ReachRow> imitate_reaches(const Env& prototype, const DemoSet& demos
     ReachRow r;
     r.expert_id = demo.expert_id;
     r.episode = episodes[i];
-    const auto held = demo.attributes.find("held_out");
-    r.held_out = held != demo.attributes.end() && held->second > 0.5;
+    r.held_out = vae::is_held_out(demo);
     r.demo_path = grip_path(demo, demos.header.feature_names);
     r.imitation_path = grip_path(outcomes[i].episode, prototype.feature_names());
     rows.push_back(std::move(r));
@@ -102,6 +102,8 @@ std::pair<double, double> segment_coordinates(const Point3& a, const Point3& b, 
   for (int k = 0; k < 3; ++k) foot[k] = a[k] + along * ab[k];
   return {along, distance(foot, p)};
 }
+
+double InterpolationPair::segment_length() const { return distance(demo_end_a, demo_end_b); }
 
 bool InterpolationPair::monotone(double tolerance) const {
   for (size_t k = 1; k < along.size(); ++k)
@@ -168,7 +170,7 @@ std::string interpolation_csv(const std::vector<InterpolationPair>& pairs) {
     for (size_t k = 0; k < r.alphas.size(); ++k) {
       out << p << ',' << r.episode_a << ',' << r.episode_b << ',' << r.alphas[k];
       write_point(out, r.ends[k]);
-      out << ',' << r.along[k] << ',' << r.off_line[k] << ',' << distance(r.demo_end_a, r.demo_end_b) << '\n';
+      out << ',' << r.along[k] << ',' << r.off_line[k] << ',' << r.segment_length() << '\n';
     }
   }
   return out.str();

@@ -59,6 +59,7 @@ struct InterpolationPair {
   std::vector<double> along;                // s_α
   std::vector<double> off_line;             // distance of e_α from the line (m)
   bool monotone(double tolerance) const;
+  double segment_length() const;  // |d_b - d_a| (m)
 };
 
 // s and the distance from the line through a and b, for point p (a != b).

@@ -1,15 +1,13 @@
 #include "experts/agent_policy.h"
 
-#include <map>
-
 #include "util/rng.h"
 
 namespace vaegail {
 
 BatchPolicy agent_batch_policy(std::shared_ptr<Agent> agent, std::vector<std::vector<float>> conditions,
                                bool stochastic, std::uint64_t seed) {
-  auto noise = std::make_shared<std::map<int, Rng>>();
-  return [agent, conditions = std::move(conditions), stochastic, seed, noise](
+  auto noise = std::make_shared<EpisodeStreams>(seed);
+  return [agent, conditions = std::move(conditions), stochastic, noise](
              int n, const float* observations, const int* episodes, const int*, float* actions) {
     torch::NoGradGuard no_grad;
     const int obs_dim = agent->obs_dim(), cond_dim = agent->condition_dim(), act_dim = agent->act_dim();
@@ -23,7 +21,7 @@ BatchPolicy agent_batch_policy(std::shared_ptr<Agent> agent, std::vector<std::ve
     const float* m = mean.data_ptr<float>();
     const float* s = std.data_ptr<float>();
     for (int b = 0; b < n; ++b) {
-      Rng* rng = stochastic ? &noise->try_emplace(episodes[b], derive_seed(seed, episodes[b])).first->second : nullptr;
+      Rng* rng = stochastic ? &(*noise)(episodes[b]) : nullptr;
       for (int a = 0; a < act_dim; ++a) {
         const int i = b * act_dim + a;
         actions[i] = rng ? static_cast<float>(m[i] + s[i] * rng->normal()) : m[i];

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 
 #include "env/arm.h"
 #include "util/atomic_file.h"
@@ -167,8 +166,8 @@ LoadedArmExpert load_arm_expert(const std::string& run_dir) {
 
 BatchPolicy arm_expert_policy(std::shared_ptr<Ddpg> ddpg, const BoxSpec& action_spec, double noise_std,
                               std::uint64_t seed) {
-  auto noise = std::make_shared<std::map<int, Rng>>();
-  return [ddpg, action_spec, noise_std, seed, noise](int n, const float* observations, const int* episodes,
+  auto noise = std::make_shared<EpisodeStreams>(seed);
+  return [ddpg, action_spec, noise_std, noise](int n, const float* observations, const int* episodes,
                                                      const int*, float* actions) {
     torch::NoGradGuard no_grad;
     const int obs_dim = ddpg->actor().in_dim(), act_dim = action_spec.dim();
@@ -176,7 +175,7 @@ BatchPolicy arm_expert_policy(std::shared_ptr<Ddpg> ddpg, const BoxSpec& action_
     const auto mean = ddpg->act(obs).contiguous();
     const float* m = mean.data_ptr<float>();
     for (int b = 0; b < n; ++b) {
-      Rng& rng = noise->try_emplace(episodes[b], derive_seed(seed, episodes[b])).first->second;
+      Rng& rng = (*noise)(episodes[b]);
       for (int a = 0; a < act_dim; ++a) {
         const double u = m[b * act_dim + a] + noise_std * rng.normal();
         actions[b * act_dim + a] = static_cast<float>(std::clamp(u, action_spec.low[a], action_spec.high[a]));

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <random>
 
 namespace vaegail {
@@ -28,6 +29,18 @@ class Rng {
 
  private:
   std::mt19937_64 engine_;
+};
+
+// One stream per episode, seeded by (seed, episode) and made on first use: a batch policy's
+// noise then does not depend on which episodes happen to share a batch.
+class EpisodeStreams {
+ public:
+  explicit EpisodeStreams(std::uint64_t seed) : seed_(seed) {}
+  Rng& operator()(int episode) { return streams_.try_emplace(episode, derive_seed(seed_, episode)).first->second; }
+
+ private:
+  std::uint64_t seed_;
+  std::map<int, Rng> streams_;
 };
 
 }  // namespace vaegail

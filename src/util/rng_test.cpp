@@ -41,3 +41,20 @@ TEST(Rng, SameSeedSameSequence) {
 
 }  // namespace
 }  // namespace vaegail
+
+namespace vaegail {
+namespace {
+
+TEST(EpisodeStreams, EachEpisodeDrawsItsOwnSeededStreamWhateverTheOrder) {
+  EpisodeStreams forward(9), backward(9);
+  const double a0 = forward(0).normal(), a1 = forward(1).normal();
+  const double b1 = backward(1).normal(), b0 = backward(0).normal();
+  EXPECT_EQ(a0, b0);
+  EXPECT_EQ(a1, b1);
+  EXPECT_NE(a0, a1);
+  EXPECT_EQ(a0, Rng(derive_seed(9, 0)).normal());
+  EXPECT_EQ(forward(0).normal(), backward(0).normal());  // a stream continues where it was
+}
+
+}  // namespace
+}  // namespace vaegail
