@@ -113,23 +113,26 @@ void run_train_walker(const TrainFlags& f) {
 }
 
 // One line per reaching expert: its target, the best noise-free return (of 50) and the final
-// grip-to-target distance of that episode; then the median distance.
+// grip-to-target distance and path ratio of that episode; then the medians.
 std::string arm_expert_table(const std::vector<ArmExpertSpec>& specs, const std::vector<ArmExpertResult>& results) {
   std::string out;
   char line[160];
-  std::snprintf(line, sizeof line, "%-10s %28s %12s %16s\n", "expert", "target (m)", "best return", "final dist (cm)");
+  std::snprintf(line, sizeof line, "%-10s %28s %12s %16s %11s\n", "expert", "target (m)", "best return", "final dist (cm)",
+                "path ratio");
   out += line;
-  std::vector<double> distances;
+  std::vector<double> distances, ratios;
   for (size_t i = 0; i < specs.size(); ++i) {
-    std::snprintf(line, sizeof line, "%-10s (%7.3f, %7.3f, %7.3f) %12.2f %16.1f\n", specs[i].id.c_str(),
+    std::snprintf(line, sizeof line, "%-10s (%7.3f, %7.3f, %7.3f) %12.2f %16.1f %11.2f\n", specs[i].id.c_str(),
                   specs[i].target[0], specs[i].target[1], specs[i].target[2], results[i].best_return,
-                  100 * results[i].final_distance);
+                  100 * results[i].final_distance, results[i].path_ratio);
     out += line;
     distances.push_back(results[i].final_distance);
+    ratios.push_back(results[i].path_ratio);
   }
   std::sort(distances.begin(), distances.end());
-  std::snprintf(line, sizeof line, "%zu experts, median final distance %.1f cm, worst %.1f cm\n", distances.size(),
-                100 * distances[distances.size() / 2], 100 * distances.back());
+  std::sort(ratios.begin(), ratios.end());
+  std::snprintf(line, sizeof line, "%zu experts, median final distance %.1f cm, worst %.1f cm; median path ratio %.2f\n",
+                distances.size(), 100 * distances[distances.size() / 2], 100 * distances.back(), ratios[ratios.size() / 2]);
   return out + line;
 }
 
@@ -195,7 +198,7 @@ void run_eval_arm(const std::vector<std::string>& dirs, const std::string& json_
     specs.push_back(e.spec);
     results.push_back(e.result);
     report.push_back({{"id", e.spec.id}, {"target", e.spec.target}, {"best_return", e.result.best_return},
-                      {"final_distance", e.result.final_distance}});
+                      {"final_distance", e.result.final_distance}, {"path_ratio", e.result.path_ratio}});
   }
   std::fputs(arm_expert_table(specs, results).c_str(), stdout);
   if (!json_out.empty()) write_file_atomically(json_out, report.dump(2));

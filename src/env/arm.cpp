@@ -46,11 +46,14 @@ std::array<double, 3> ArmEnv::grip_position() const {
   return {p[0], p[1], p[2]};
 }
 
-double ArmEnv::target_distance() const {
-  const auto g = grip_position();
+double point_distance(const std::array<double, 3>& a, const std::array<double, 3>& b) {
   double sq = 0;
-  for (int k = 0; k < 3; ++k) sq += (g[k] - context_[k]) * (g[k] - context_[k]);
+  for (int k = 0; k < 3; ++k) sq += (a[k] - b[k]) * (a[k] - b[k]);
   return std::sqrt(sq);
+}
+
+double ArmEnv::target_distance() const {
+  return point_distance(grip_position(), {context_[0], context_[1], context_[2]});
 }
 
 void ArmEnv::observe(float* out) const {
@@ -80,7 +83,21 @@ double ArmEnv::task_reward(double target_distance) {
          0.5 * std::exp(-(target_distance / 0.05) * (target_distance / 0.05));
 }
 
-double ArmEnv::reward(const float*) const { return task_reward(target_distance()); }
+StepOutcome ArmEnv::step(const float* action) {
+  std::copy(data()->qpos, data()->qpos + kJoints, angles_at_command_.begin());
+  return MujocoEnv::step(action);
+}
+
+double ArmEnv::command_jump() const {
+  const double* applied = data()->ctrl;  // the commands after clipping to the joint ranges
+  double sq = 0;
+  for (int j = 0; j < kJoints; ++j) sq += (applied[j] - angles_at_command_[j]) * (applied[j] - angles_at_command_[j]);
+  return sq / kJoints;
+}
+
+double ArmEnv::reward(const float*) const {
+  return task_reward(target_distance()) - arm_options_.command_cost * command_jump();
+}
 
 void ArmEnv::initialize_episode(Rng&) {}  // the home pose: mj_resetData's qpos0 and zero velocity
 

@@ -13,11 +13,15 @@
 //
 // Features: grip_x, grip_y, grip_z (m), target_distance (m, grip to target).
 //
-// Reward for the expert stage, in [0, 1]:
-//   0.5 * max(0, 1 - d / 1 m) + 0.5 * exp(-(d / 0.05)^2)
-// The linear term pulls from anywhere in the workspace (no target is 1 m from the home grip), the sharp one pays for being on the
-// target and staying there (every step counts). No control cost: the servos' damping already
-// makes the motion smooth, and a cost on angle commands would bias the reached pose.
+// Reward for the expert stage, at most 1:
+//   0.5 * max(0, 1 - d / 1 m) + 0.5 * exp(-(d / 0.05)^2) - command_cost * mean_j (u_j - q_j)^2
+// The linear term pulls from anywhere in the workspace (no target is 1 m from the home grip),
+// the sharp one pays for being on the target and staying there (every step counts). The last
+// term charges each joint command u_j for its distance from the angle q_j the joint had when
+// it was commanded: without it DDPG's actors swing their commands from step to step and settle
+// by alternating around the target, so a demonstration's action is nearly noise given its state
+// and a VAE cannot learn it. It pays nothing at rest (no bias on the reached pose beyond the
+// servos' sag under gravity), and it depends only on the state and the action.
 #pragma once
 
 #include <array>
@@ -26,8 +30,12 @@
 
 namespace vaegail {
 
+// Euclidean distance between two points of the workspace (m).
+double point_distance(const std::array<double, 3>& a, const std::array<double, 3>& b);
+
 struct ArmOptions {
   int episode_length = 50;
+  double command_cost = 0.1;  // per rad^2 of mean squared command-minus-angle
 };
 
 class ArmEnv : public MujocoEnv {
@@ -49,6 +57,9 @@ class ArmEnv : public MujocoEnv {
   // A target drawn uniformly from the workspace box.
   static std::vector<double> random_target(Rng& rng);
   static double task_reward(double target_distance);
+  // mean_j (u_j - q_j)^2 of the last step's applied commands u against the angles q it began at.
+  double command_jump() const;
+  StepOutcome step(const float* action) override;
 
  protected:
   void initialize_episode(Rng& rng) override;
@@ -57,6 +68,7 @@ class ArmEnv : public MujocoEnv {
  private:
   ArmOptions arm_options_;
   int grip_ = 0;
+  std::array<double, kJoints> angles_at_command_{};
 };
 
 }  // namespace vaegail

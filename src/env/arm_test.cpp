@@ -94,6 +94,27 @@ TEST(Arm, RewardMatchesHandComputedValues) {
   EXPECT_NEAR(ArmEnv::task_reward(1.5), 0.0, 1e-12);
 }
 
+TEST(Arm, RewardChargesEachCommandForItsDistanceFromTheAngleItWasGivenAt) {
+  ArmOptions options;
+  options.command_cost = 0.1;
+  ArmEnv env(options);
+  env.reset(0);
+  // From the home pose (every angle 0); arm_1's 5 rad is clipped to its 2.967 rad range.
+  const std::vector<float> command = {5.0f, -0.3f, 0.2f, 0, 0, 0, 0.4f, -0.4f, 0};
+  const double first_jump = (2.967 * 2.967 + 0.09 + 0.04 + 0.16 + 0.16) / 9;
+  const auto first = env.step(command.data());
+  EXPECT_NEAR(env.command_jump(), first_jump, 1e-6);
+  EXPECT_NEAR(first.reward, ArmEnv::task_reward(env.target_distance()) - 0.1 * first_jump, 1e-9);
+  // The second step is charged against the angles the first one reached, not the home pose.
+  std::vector<double> reached(env.data()->qpos, env.data()->qpos + ArmEnv::kJoints);
+  const auto second = env.step(command.data());
+  double sq = 0;
+  for (int j = 0; j < ArmEnv::kJoints; ++j) sq += std::pow(env.data()->ctrl[j] - reached[j], 2);
+  EXPECT_NEAR(env.command_jump(), sq / 9, 1e-9);
+  EXPECT_LT(env.command_jump(), first_jump);
+  EXPECT_NEAR(second.reward, ArmEnv::task_reward(env.target_distance()) - 0.1 * sq / 9, 1e-9);
+}
+
 TEST(Arm, ServosSettleOnTheCommandedAnglesWithinHalfASecond) {
   ArmEnv env;
   env.reset(0);

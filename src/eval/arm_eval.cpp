@@ -5,18 +5,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "env/arm.h"
 #include "plot/charts.h"
 #include "vae/demo_dataset.h"
 
 namespace vaegail::eval {
 
 namespace {
-
-double distance(const Point3& a, const Point3& b) {
-  double sq = 0;
-  for (int k = 0; k < 3; ++k) sq += (a[k] - b[k]) * (a[k] - b[k]);
-  return std::sqrt(sq);
-}
 
 void write_point(std::ostringstream& out, const Point3& p) { out << ',' << p[0] << ',' << p[1] << ',' << p[2]; }
 
@@ -50,7 +45,7 @@ std::vector<Point3> grip_path(const Episode& episode, const std::vector<std::str
   return path;
 }
 
-double ReachRow::final_distance() const { return distance(demo_path.back(), imitation_path.back()); }
+double ReachRow::final_distance() const { return point_distance(demo_path.back(), imitation_path.back()); }
 
 std::vector<ReachRow> imitate_reaches(const Env& prototype, const DemoSet& demos, const std::vector<int64_t>& episodes,
                                       const torch::Tensor& z, const vae::LatentPolicy& policy,
@@ -100,10 +95,10 @@ std::pair<double, double> segment_coordinates(const Point3& a, const Point3& b, 
   along /= ab2;
   Point3 foot;
   for (int k = 0; k < 3; ++k) foot[k] = a[k] + along * ab[k];
-  return {along, distance(foot, p)};
+  return {along, point_distance(foot, p)};
 }
 
-double InterpolationPair::segment_length() const { return distance(demo_end_a, demo_end_b); }
+double InterpolationPair::segment_length() const { return point_distance(demo_end_a, demo_end_b); }
 
 bool InterpolationPair::monotone(double tolerance) const {
   for (size_t k = 1; k < along.size(); ++k)

@@ -86,27 +86,35 @@ std::shared_ptr<Ddpg> make_arm_ddpg(const ArmExpertSpec& spec, const ArmExpertOp
   return std::make_shared<Ddpg>(env.obs_dim(), env.action_spec(), d);
 }
 
-// One noise-free episode (the start and the actor are deterministic): return and the final
-// grip-to-target distance.
+// One noise-free episode (the start and the actor are deterministic): return, the final
+// grip-to-target distance and the grip path's ratio of length to displacement.
 ArmExpertResult evaluate_actor(Ddpg& ddpg, const ArmEnv& prototype) {
   torch::NoGradGuard no_grad;
   const auto copy = prototype.clone();
   auto& env = dynamic_cast<ArmEnv&>(*copy);
   env.reset(0);
   ArmExpertResult r;
+  const auto start = env.grip_position();
+  auto previous = start;
+  double path_length = 0;
   for (bool done = false; !done;) {
     const auto action = ddpg.act(torch::tensor(env.observation()).unsqueeze(0)).squeeze(0).contiguous();
     const StepOutcome out = env.step(action.data_ptr<float>());
     r.best_return += out.reward;
     done = out.done();
+    const auto now = env.grip_position();
+    path_length += point_distance(previous, now);
+    previous = now;
   }
   r.final_distance = env.target_distance();
+  r.path_ratio = path_length / std::max(point_distance(start, previous), 1e-6);
   return r;
 }
 
 ArmExpertResult read_result(const std::string& run_dir) {
   const auto j = read_json_file(run_dir + "/state.json");
-  return {j.at("best_return").get<double>(), j.at("final_distance").get<double>()};
+  // Runs published before the path ratio was recorded read as 0.
+  return {j.at("best_return").get<double>(), j.at("final_distance").get<double>(), j.value("path_ratio", 0.0)};
 }
 
 std::unique_ptr<ArmEnv> arm_for(const ArmExpertSpec& spec) {
@@ -131,14 +139,14 @@ ArmExpertResult train_arm_expert(const ArmExpertSpec& spec, const ArmExpertOptio
 
   const auto env = arm_for(spec);
   auto ddpg = make_arm_ddpg(spec, options, *env, options.total_steps);
-  CsvLog log(run_dir + "/metrics.csv", {"steps", "critic_loss", "actor_objective", "return", "final_distance"});
+  CsvLog log(run_dir + "/metrics.csv", {"steps", "critic_loss", "actor_objective", "return", "final_distance", "path_ratio"});
   ArmExpertResult best{-1.0, 0.0};
   while (ddpg->steps_trained() < options.total_steps) {
     const DdpgStats stats =
         ddpg->train(*env, std::min<std::int64_t>(options.eval_every, options.total_steps - ddpg->steps_trained()));
     const ArmExpertResult now = evaluate_actor(*ddpg, *env);
     log.write({double(ddpg->steps_trained()), stats.critic_loss, stats.actor_objective, now.best_return,
-               now.final_distance});
+               now.final_distance, now.path_ratio});
     if (now.best_return >= best.best_return) {
       best = now;
       ddpg->save_actor(run_dir + "/actor.pt");
@@ -147,7 +155,8 @@ ArmExpertResult train_arm_expert(const ArmExpertSpec& spec, const ArmExpertOptio
   }
   write_file_atomically(run_dir + "/state.json",
                         nlohmann::json{{"done", true}, {"best_return", best.best_return},
-                                       {"final_distance", best.final_distance}}.dump(2));
+                                       {"final_distance", best.final_distance},
+                                       {"path_ratio", best.path_ratio}}.dump(2));
   return best;
 }
 

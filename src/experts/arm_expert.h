@@ -6,7 +6,8 @@
 //   run_dir/options.json   the training options
 //   run_dir/actor.pt       the actor that scored best at the periodic noise-free evaluations
 //   run_dir/metrics.csv    one row per evaluation
-//   run_dir/state.json     done, best return, its final grip-to-target distance (written last)
+//   run_dir/state.json     done, best return, its final grip-to-target distance and path ratio
+//                          (written last)
 // DDPG's replay buffer is not checkpointed: a killed expert restarts from scratch (a run takes
 // well under a minute); finished experts are skipped, so a killed set resumes where it was.
 #pragma once
@@ -48,6 +49,9 @@ void from_json(const nlohmann::json& j, ArmExpertOptions& o);
 struct ArmExpertResult {
   double best_return = 0;
   double final_distance = 0;  // grip to target at the end of the best actor's episode (m)
+  // Length of that episode's grip path over the straight distance from its start to its end:
+  // 1 for a straight reach, large when the commands swing the arm back and forth.
+  double path_ratio = 0;
 };
 
 // Trains until done; returns at once (with the stored result) for a finished run.

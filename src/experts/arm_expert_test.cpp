@@ -62,6 +62,7 @@ TEST(ArmExperts, ATrainedRunIsSkippedLoadsAndDemonstratesDistinctEpisodesTowards
   const ArmExpertResult result = train_arm_expert(spec, tiny_options(), dir);
   ASSERT_TRUE(arm_expert_done(dir));
   EXPECT_GT(result.best_return, 0.0);
+  EXPECT_GE(result.path_ratio, 1.0);  // no path is shorter than the straight line
   // Finished: a second call trains nothing and returns the stored result.
   const auto again = train_arm_expert(spec, tiny_options(), dir, [](std::int64_t) { FAIL() << "retrained"; });
   EXPECT_DOUBLE_EQ(again.best_return, result.best_return);
@@ -69,6 +70,7 @@ TEST(ArmExperts, ATrainedRunIsSkippedLoadsAndDemonstratesDistinctEpisodesTowards
   const LoadedArmExpert loaded = load_arm_expert(dir);
   EXPECT_EQ(loaded.spec.target, spec.target);
   EXPECT_DOUBLE_EQ(loaded.result.final_distance, result.final_distance);
+  EXPECT_DOUBLE_EQ(loaded.result.path_ratio, result.path_ratio);
 
   const std::string demos = dir + "/demos.h5";
   ArmCollectOptions collect;
