@@ -320,7 +320,7 @@ void add_expert_commands(CLI::App& app) {
   collect->add_option("--episodes-per-expert", c->episodes, "episodes per expert (default: walker 20, arm 30, as the paper)")
       ->check(CLI::Range(1, 100000));
   collect->add_flag("--stochastic", c->collect.stochastic, "walker: sample actions (default: mean actions)");
-  collect->add_option("--noise", c->noise, "arm: std (rad) of the Gaussian noise on the expert's joint commands")
+  collect->add_option("--noise", c->noise, "arm: std (rad) of the Gaussian noise on the executed joint commands (the demonstration records the expert's own)")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   collect->add_option("--held-out", c->held_out, "expert ids marked held_out = 1 (kept out of VAE training)");
   collect->add_option("--seed", c->collect.seed, "episode seeds")->capture_default_str();

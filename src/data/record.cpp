@@ -67,7 +67,9 @@ std::vector<Episode> record_episodes(const Env& prototype, const RecordRequest& 
   };
   for (int s = 0; s < slots; ++s) start(s);
 
-  std::vector<float> batch_obs, batch_act;
+  const BoxSpec action_box = prototype.action_spec();
+  EpisodeStreams execution_noise(request.execution_noise_seed);
+  std::vector<float> batch_obs, batch_act, batch_executed;
   std::vector<int> batch_slots, batch_episodes, batch_steps;
   while (finished < total) {
     batch_slots.clear();
@@ -84,13 +86,23 @@ std::vector<Episode> record_episodes(const Env& prototype, const RecordRequest& 
     const int n = static_cast<int>(batch_slots.size());
     batch_act.assign(static_cast<size_t>(n) * act_dim, 0.f);
     policy(n, batch_obs.data(), batch_episodes.data(), batch_steps.data(), batch_act.data());
+    batch_executed = batch_act;
+    if (request.execution_noise_std > 0)
+      for (int b = 0; b < n; ++b) {
+        Rng& rng = execution_noise(batch_episodes[b]);
+        for (int a = 0; a < act_dim; ++a) {
+          float& u = batch_executed[static_cast<size_t>(b) * act_dim + a];
+          u = static_cast<float>(std::clamp(u + request.execution_noise_std * rng.normal(), action_box.low[a],
+                                            action_box.high[a]));
+        }
+      }
     std::vector<std::uint8_t> done(n, 0);
     pool.parallel_for(n, [&](int b) {
       const int s = batch_slots[b];
       Env& env = *envs[s];
       Episode& e = episodes[running[s]];
       const float* action = &batch_act[static_cast<size_t>(b) * act_dim];
-      const StepOutcome out = env.step(action);
+      const StepOutcome out = env.step(&batch_executed[static_cast<size_t>(b) * act_dim]);
       e.actions.insert(e.actions.end(), action, action + act_dim);
       e.rewards.push_back(out.reward);
       e.terminations.push_back(out.terminated);

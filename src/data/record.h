@@ -25,6 +25,12 @@ struct RecordRequest {
   std::string expert_id;
   int num_envs = 8;     // environments stepped together
   int num_threads = 1;  // threads stepping them
+  // When above 0, each environment executes the policy's action plus Gaussian noise of this std
+  // (clipped to the action box; one stream per episode, seeded by (execution_noise_seed,
+  // episode)) while the episode records the action before the noise: the demonstration's label
+  // is what the policy meant in the state its perturbed execution led to.
+  double execution_noise_std = 0;
+  std::uint64_t execution_noise_seed = 0;
 };
 
 DemoHeader header_for(const Env& env);

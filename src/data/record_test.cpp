@@ -47,5 +47,23 @@ TEST(Record, EpisodeMatchesAHandRolledEpisodeAndTheFormat) {
   EXPECT_EQ(e.attributes.count("mean_com_speed"), 1u);
 }
 
+TEST(Record, ExecutionNoiseMovesTheStatesButNotTheRecordedActions) {
+  WalkerEnv env;
+  const auto clean = record_episodes(env, request(3, 1, 1), zero_policy(env));
+  RecordRequest noisy = request(3, 1, 1);
+  noisy.execution_noise_std = 0.3;
+  noisy.execution_noise_seed = 9;
+  const auto a = record_episodes(env, noisy, zero_policy(env));
+  RecordRequest rebatched = request(3, 3, 2);
+  rebatched.execution_noise_std = 0.3;
+  rebatched.execution_noise_seed = 9;
+  const auto b = record_episodes(env, rebatched, zero_policy(env));
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(a[i].actions, std::vector<float>(a[i].actions.size(), 0.f));  // the label is the policy's
+    EXPECT_NE(a[i].observations, clean[i].observations);                   // the execution was not
+    EXPECT_EQ(a[i].observations, b[i].observations);                       // noise per episode
+  }
+}
+
 }  // namespace
 }  // namespace vaegail

@@ -173,25 +173,22 @@ LoadedArmExpert load_arm_expert(const std::string& run_dir) {
   return e;
 }
 
-BatchPolicy arm_expert_policy(std::shared_ptr<Ddpg> ddpg, const BoxSpec& action_spec, double noise_std,
-                              std::uint64_t seed) {
-  auto noise = std::make_shared<EpisodeStreams>(seed);
-  return [ddpg, action_spec, noise_std, noise](int n, const float* observations, const int* episodes,
-                                                     const int*, float* actions) {
+namespace {
+// The expert's actor: its joint commands, clipped to the action box.
+BatchPolicy arm_expert_policy(std::shared_ptr<Ddpg> ddpg, const BoxSpec& action_spec) {
+  return [ddpg, action_spec](int n, const float* observations, const int*, const int*, float* actions) {
     torch::NoGradGuard no_grad;
     const int obs_dim = ddpg->actor().in_dim(), act_dim = action_spec.dim();
     const auto obs = torch::from_blob(const_cast<float*>(observations), {n, obs_dim});
     const auto mean = ddpg->act(obs).contiguous();
     const float* m = mean.data_ptr<float>();
-    for (int b = 0; b < n; ++b) {
-      Rng& rng = (*noise)(episodes[b]);
-      for (int a = 0; a < act_dim; ++a) {
-        const double u = m[b * act_dim + a] + noise_std * rng.normal();
-        actions[b * act_dim + a] = static_cast<float>(std::clamp(u, action_spec.low[a], action_spec.high[a]));
-      }
-    }
+    for (int b = 0; b < n; ++b)
+      for (int a = 0; a < act_dim; ++a)
+        actions[b * act_dim + a] = static_cast<float>(
+            std::clamp(static_cast<double>(m[b * act_dim + a]), action_spec.low[a], action_spec.high[a]));
   };
 }
+}  // namespace
 
 void collect_arm_demos(const std::vector<std::string>& expert_dirs, const std::string& out_path,
                        const ArmCollectOptions& o, Progress* progress) {
@@ -206,11 +203,10 @@ void collect_arm_demos(const std::vector<std::string>& expert_dirs, const std::s
     }
     request.expert_id = expert.spec.id;
     request.num_envs = o.num_envs;
+    request.execution_noise_std = o.noise_std;
+    request.execution_noise_seed = derive_seed(o.seed, 1000 + x);
     const bool held_out = std::count(o.held_out.begin(), o.held_out.end(), expert.spec.id) > 0;
-    auto episodes = record_episodes(
-        prototype, request,
-        arm_expert_policy(expert.ddpg, prototype.action_spec(), o.noise_std, derive_seed(o.seed, 1000 + x)),
-        progress);
+    auto episodes = record_episodes(prototype, request, arm_expert_policy(expert.ddpg, prototype.action_spec()), progress);
     for (auto& e : episodes) {
       e.attributes["held_out"] = held_out ? 1.0 : 0.0;
       const int n_features = static_cast<int>(prototype.feature_names().size());

@@ -70,14 +70,11 @@ struct LoadedArmExpert {
 // Throws naming the directory and the missing or malformed file.
 LoadedArmExpert load_arm_expert(const std::string& run_dir);
 
-// The expert's actor plus Gaussian noise of `noise_std` (rad) on every joint command, clipped
-// to the action box, from a stream per episode seeded by (seed, episode): a deterministic
-// actor from a fixed start would demonstrate one trajectory 30 times.
-BatchPolicy arm_expert_policy(std::shared_ptr<Ddpg> ddpg, const BoxSpec& action_spec, double noise_std,
-                              std::uint64_t seed);
-
 struct ArmCollectOptions {
   int episodes_per_expert = 30;  // the paper: 30 per policy
+  // Gaussian noise (rad) on every executed joint command, while the demonstration records the
+  // actor's own command: a deterministic actor from a fixed start would demonstrate one
+  // trajectory 30 times, and a label carrying the noise would ask the VAE to predict it.
   double noise_std = 0.05;
   std::uint64_t seed = 0;
   int num_envs = 10;
