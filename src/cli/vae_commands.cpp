@@ -161,7 +161,7 @@ void add_embed(CLI::App& vae) {
       r.episode = i;
       r.expert_id = e.expert_id;
       r.context = e.context.empty() ? std::nan("") : e.context[0];
-      r.achieved_speed = vae::achieved_speed(l.demos, i);
+      r.achieved_speed = vae::achieved_speed_or_nan(l.demos, i);
       r.held_out = vae::is_held_out(e);
       r.mu.assign(mu[i].data_ptr<double>(), mu[i].data_ptr<double>() + mu.size(1));
       r.sigma.assign(sigma[i].data_ptr<double>(), sigma[i].data_ptr<double>() + sigma.size(1));

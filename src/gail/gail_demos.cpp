@@ -1,7 +1,6 @@
 #include "gail/gail_demos.h"
 
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -14,14 +13,6 @@ namespace {
 
 torch::Tensor step_rows(const std::vector<float>& values, int rows, int dim) {
   return torch::from_blob(const_cast<float*>(values.data()), {rows, dim}, torch::kFloat32).clone();
-}
-
-double speed_or_nan(const DemoSet& demos, int64_t episode) {
-  try {
-    return vae::achieved_speed(demos, episode);
-  } catch (const DataError&) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
 }
 
 }  // namespace
@@ -60,7 +51,7 @@ GailDemos make_gail_demos(const DemoSet& demos, const std::vector<int64_t>& epis
     lengths.push_back(T);
     offset += T;
     out.contexts.push_back(e.context);
-    out.achieved_speeds.push_back(speed_or_nan(demos, i));
+    out.achieved_speeds.push_back(vae::achieved_speed_or_nan(demos, i));
   }
   out.observations = torch::cat(obs);
   out.actions = torch::cat(act);

@@ -1,6 +1,7 @@
 #include "vae/demo_dataset.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "util/rng.h"
@@ -93,6 +94,14 @@ double achieved_speed(const DemoSet& demos, int64_t episode) {
     throw DataError(demos.path + ": episode_" + std::to_string(episode) +
                     ": neither attribute mean_com_speed nor feature com_speed");
   return e.mean_feature(static_cast<int>(f - names.begin()), static_cast<int>(names.size()));
+}
+
+double achieved_speed_or_nan(const DemoSet& demos, int64_t episode) {
+  try {
+    return achieved_speed(demos, episode);
+  } catch (const DataError&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
 }
 
 }  // namespace vaegail::vae

@@ -42,5 +42,7 @@ bool is_held_out(const Episode& episode);
 // The episode's mean forward speed: attribute mean_com_speed when recorded, otherwise the
 // mean of the com_speed feature; throws DataError when the file has neither.
 double achieved_speed(const DemoSet& demos, int64_t episode);
+// The same, NaN for a file without a speed (the arm's).
+double achieved_speed_or_nan(const DemoSet& demos, int64_t episode);
 
 }  // namespace vaegail::vae

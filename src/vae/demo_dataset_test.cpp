@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
@@ -129,6 +130,14 @@ TEST(DemoDatasetTest, AchievedSpeedPrefersTheRecordedAttribute) {
   const auto set = demo_set({with_attribute, episode(1, 4)});
   EXPECT_EQ(achieved_speed(set, 0), 1.25);
   EXPECT_DOUBLE_EQ(achieved_speed(set, 1), (1 + 2 + 3 + 4) / 4.0);  // the feature over t = 1..T
+}
+
+TEST(DemoDatasetTest, AFileWithoutASpeedHasNoneToReport) {
+  auto set = demo_set({episode(0, 4)});
+  set.header.feature_names = {"grip_x"};
+  EXPECT_THROW(achieved_speed(set, 0), DataError);
+  EXPECT_TRUE(std::isnan(achieved_speed_or_nan(set, 0)));
+  EXPECT_DOUBLE_EQ(achieved_speed_or_nan(demo_set({episode(0, 4)}), 0), 2.5);
 }
 
 }  // namespace
