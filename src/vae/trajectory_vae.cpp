@@ -50,12 +50,26 @@ TrajectoryVaeImpl::TrajectoryVaeImpl(const VaeConfig& config) : config_(config) 
   action_std_ = register_buffer("action_std", torch::ones({config_.action_dim}));
 }
 
+torch::Tensor TrajectoryVaeImpl::modelled_actions(const torch::Tensor& states,
+                                                  const torch::Tensor& actions) const {
+  if (config_.action_relative_to_state.empty()) return actions;
+  return actions - action_offset(states.narrow(1, 0, actions.size(1)));
+}
+
+torch::Tensor TrajectoryVaeImpl::action_offset(const torch::Tensor& state) const {
+  const auto& k = config_.action_relative_to_state;
+  if (k.empty()) return torch::zeros({}, state.options());
+  const auto index = torch::tensor(std::vector<int64_t>(k.begin(), k.end()),
+                                   torch::TensorOptions(torch::kLong).device(state.device()));
+  return state.index_select(-1, index);
+}
+
 void TrajectoryVaeImpl::fit_normalization(const torch::Tensor& states,
                                           const torch::Tensor& actions,
                                           const torch::Tensor& mask) {
   const auto s = masked_moments(states, mask.defined() ? state_mask_from_step_mask(mask)
                                                        : torch::Tensor());
-  const auto a = masked_moments(actions, mask);
+  const auto a = masked_moments(modelled_actions(states, actions), mask);
   set_normalization(s.first, s.second, a.first, a.second);
 }
 
@@ -110,7 +124,7 @@ VaeLoss TrajectoryVaeImpl::loss(const torch::Tensor& states, const torch::Tensor
   const int64_t Z = config_.latent_dim;
   torch::Tensor step_mask, state_mask;
   auto x = normalize_states(states);
-  auto a = normalize_actions(actions);
+  auto a = normalize_actions(modelled_actions(states, actions));
   if (mask.defined()) {
     TORCH_CHECK(mask.sizes() == torch::IntArrayRef({B, T}), "TrajectoryVae::loss: mask must be [B, T]");
     step_mask = mask.to(states.device()).to(torch::kBool);
@@ -146,7 +160,8 @@ VaeLoss TrajectoryVaeImpl::loss(const torch::Tensor& states, const torch::Tensor
 }
 
 torch::Tensor TrajectoryVaeImpl::action_mean(const torch::Tensor& state, const torch::Tensor& z) {
-  return action_decoder_->mean(normalize_states(state), z) * action_std_ + action_mean_;
+  return action_decoder_->mean(normalize_states(state), z) * action_std_ + action_mean_ +
+         action_offset(state);
 }
 
 torch::Tensor TrajectoryVaeImpl::sample_next_state(const torch::Tensor& state,

@@ -18,6 +18,10 @@
 // checkpoint is self-contained. Every model sees and every likelihood is reported in the
 // NORMALISED space: a density of raw states differs by the constant -sum_d log state_std_d
 // per step (action_log_jacobian()/state_log_jacobian() give these constants).
+//
+// With config.action_relative_to_state, the modelled action is a_t - x_t[k] (raw units) and
+// action_mean() adds x_t[k] back; the action normalisation and likelihood are those of the
+// difference.
 #pragma once
 
 #include <torch/torch.h>
@@ -67,6 +71,10 @@ class TrajectoryVaeImpl : public torch::nn::Module {
   double state_log_jacobian() const;
   double action_log_jacobian() const;
 
+  // The actions the action decoder models, in raw units: actions [B, T, A] given states
+  // [B, T+1, D] (see action_relative_to_state).
+  torch::Tensor modelled_actions(const torch::Tensor& states, const torch::Tensor& actions) const;
+
   const VaeConfig& config() const { return config_; }
   TrajectoryEncoder& encoder() { return encoder_; }
   ActionDecoder& action_decoder() { return action_decoder_; }
@@ -78,6 +86,9 @@ class TrajectoryVaeImpl : public torch::nn::Module {
   ActionDecoder action_decoder_{nullptr};
   StateDecoder state_decoder_{nullptr};
   torch::Tensor state_mean_, state_std_, action_mean_, action_std_;
+
+  // x[..., k_j] for each action component j: [..., A] raw; a scalar 0 without offsets.
+  torch::Tensor action_offset(const torch::Tensor& state) const;
 };
 TORCH_MODULE(TrajectoryVae);
 

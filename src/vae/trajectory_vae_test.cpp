@@ -64,6 +64,35 @@ TEST_F(TrajectoryVaeTest, LossIsTheSumOfTheThreeDensities) {
   EXPECT_NEAR(loss.state_nll.item<double>(), -state_lp, 1e-3);
 }
 
+TEST_F(TrajectoryVaeTest, ActionsRelativeToTheStateAreModelledAsTheirDifference) {
+  auto c = tiny_config();
+  c.action_relative_to_state = {2, 0};
+  TrajectoryVae vae(c);
+  const auto [states, actions] = testing::toy_trajectories(3, 6, 4, 2, 5);
+  vae->fit_normalization(states, actions);
+  const auto x_t = states.narrow(1, 0, 6);
+  const auto difference = actions - torch::stack({x_t.select(2, 2), x_t.select(2, 0)}, 2);
+  EXPECT_TRUE(torch::allclose(vae->modelled_actions(states, actions), difference));
+  // The normalisation is that of the difference ...
+  const auto a = vae->normalize_actions(difference);
+  EXPECT_LT(a.reshape({-1, 2}).mean(0).abs().max().item<double>(), 1e-4);
+  // ... the likelihood too ...
+  const auto noise = torch::randn({3, 2});
+  const auto loss = vae->loss(states, actions, {}, noise);
+  const auto x = vae->normalize_states(states);
+  const auto q = vae->encoder()->forward(x);
+  const auto z = (q.mean + q.log_std.exp() * noise).unsqueeze(1).expand({3, 6, 2});
+  const auto action_lp = vae->action_decoder()->log_prob(x.narrow(1, 0, 6), z, a).sum(1).mean();
+  EXPECT_NEAR(loss.action_nll.item<double>(), -action_lp.item<double>(), 1e-3);
+  // ... and the policy's action is the decoded difference plus the state components.
+  const auto s0 = states.select(1, 0), z0 = torch::zeros({3, 2});
+  auto buffers = vae->named_buffers();
+  const auto decoded = vae->action_decoder()->mean(vae->normalize_states(s0), z0) *
+                           buffers["action_std"] + buffers["action_mean"];
+  EXPECT_TRUE(torch::allclose(vae->action_mean(s0, z0) - decoded,
+                              torch::stack({s0.select(1, 2), s0.select(1, 0)}, 1), 1e-5, 1e-5));
+}
+
 TEST_F(TrajectoryVaeTest, MaskedLossEqualsLossOfTheTruncatedTrajectory) {
   TrajectoryVae vae(tiny_config());
   const auto [states, actions] = testing::toy_trajectories(2, 8, 4, 2, 3);

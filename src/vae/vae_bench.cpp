@@ -77,7 +77,7 @@ VaeBenchResult run_vae_bench(const VaeBenchOptions& o) {
   });
 
   const auto x = vae->normalize_states(states).detach();
-  const auto a = vae->normalize_actions(actions).detach();
+  const auto a = vae->normalize_actions(vae->modelled_actions(states, actions)).detach();
   const auto z_steps = noise.unsqueeze(1).expand({B, T, Z});
   r.encoder_seconds = best_seconds(o.seconds, [&] {
     vae->zero_grad();

@@ -64,6 +64,11 @@ void VaeConfig::validate() const {
   require(learning_rate > 0, "learning_rate must be > 0");
   require(batch_size >= 1, "batch_size must be >= 1");
   require(kl_weight >= 0, "kl_weight must be >= 0");
+  require(action_relative_to_state.empty() ||
+              static_cast<int>(action_relative_to_state.size()) == action_dim,
+          "action_relative_to_state must be empty or have action_dim entries");
+  for (int k : action_relative_to_state)
+    require(k >= 0 && k < state_dim, "action_relative_to_state entries must be state indices");
 }
 
 std::string VaeConfig::to_json() const {
@@ -77,6 +82,7 @@ std::string VaeConfig::to_json() const {
             {"wavenet_layers", wavenet_layers},
             {"mixture_components", mixture_components},
             {"position_embedding", position_embedding},
+            {"action_relative_to_state", action_relative_to_state},
             {"learning_rate", learning_rate},
             {"batch_size", batch_size},
             {"kl_weight", kl_weight}};
@@ -105,6 +111,8 @@ VaeConfig VaeConfig::from_json(const std::string& text, const VaeConfig& default
       else if (key == "wavenet_layers") c.wavenet_layers = it->get<int>();
       else if (key == "mixture_components") c.mixture_components = it->get<int>();
       else if (key == "position_embedding") c.position_embedding = it->get<bool>();
+      else if (key == "action_relative_to_state")
+        c.action_relative_to_state = it->get<std::vector<int>>();
       else if (key == "learning_rate") c.learning_rate = it->get<double>();
       else if (key == "batch_size") c.batch_size = it->get<int>();
       else if (key == "kl_weight") c.kl_weight = it->get<double>();
@@ -136,7 +144,8 @@ bool VaeConfig::operator==(const VaeConfig& o) const {
          lstm_hidden == o.lstm_hidden && latent_dim == o.latent_dim &&
          action_hidden == o.action_hidden && wavenet_channels == o.wavenet_channels &&
          wavenet_layers == o.wavenet_layers && mixture_components == o.mixture_components &&
-         position_embedding == o.position_embedding && learning_rate == o.learning_rate &&
+         position_embedding == o.position_embedding &&
+         action_relative_to_state == o.action_relative_to_state && learning_rate == o.learning_rate &&
          batch_size == o.batch_size && kl_weight == o.kl_weight;
 }
 

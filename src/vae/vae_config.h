@@ -25,6 +25,13 @@ struct VaeConfig {
   // A learned per-component position bias in every gated layer; without it a WaveNet with
   // only global conditioning cannot tell component k from k' (see state_decoder.h).
   bool position_embedding = true;
+  // Not in the paper. Empty, or one state index per action component: the action decoder then
+  // models a_j - x_t[k_j] instead of a_j. For position servos (the arm: an action is a set of
+  // joint-angle commands, x_t starts with the joint angles) the command is the current angle
+  // plus a small step; an MLP asked for the absolute command must carry the angle through its
+  // tanh layers, and its small errors, fed back through the servos, make a rollout drift away
+  // from every demonstration whatever z says.
+  std::vector<int> action_relative_to_state;
 
   // Training. The paper gives no VAE optimiser settings; these are Adam's usual ones.
   double learning_rate = 1e-4;

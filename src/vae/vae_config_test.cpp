@@ -45,7 +45,17 @@ TEST(VaeConfigTest, JsonRoundTrip) {
   c.position_embedding = false;
   c.learning_rate = 3e-4;
   c.kl_weight = 0.5;
+  c.action_relative_to_state.assign(56, 3);
   EXPECT_EQ(VaeConfig::from_json(c.to_json()), c);
+}
+
+TEST(VaeConfigTest, ActionOffsetsNeedOneStateIndexPerAction) {
+  const auto arm = VaeConfig::arm(21, 9);
+  EXPECT_NO_THROW(VaeConfig::from_json(R"({"action_relative_to_state": [0,1,2,3,4,5,6,7,20]})", arm));
+  EXPECT_THROW(VaeConfig::from_json(R"({"action_relative_to_state": [0, 1]})", arm),
+               std::invalid_argument);
+  EXPECT_THROW(VaeConfig::from_json(R"({"action_relative_to_state": [0,1,2,3,4,5,6,7,21]})", arm),
+               std::invalid_argument);
 }
 
 TEST(VaeConfigTest, MissingKeysKeepDefaultsUnknownKeysThrow) {
