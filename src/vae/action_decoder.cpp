@@ -5,7 +5,7 @@
 namespace vaegail::vae {
 
 ActionDecoderImpl::ActionDecoderImpl(int64_t state_dim, int64_t latent_dim, int64_t action_dim,
-                                     const std::vector<int>& hidden) {
+                                     const std::vector<int>& hidden, bool state_dependent_std) {
   int64_t in = state_dim + latent_dim;
   for (int h : hidden) {
     hidden_->push_back(torch::nn::Linear(in, h));
@@ -13,7 +13,10 @@ ActionDecoderImpl::ActionDecoderImpl(int64_t state_dim, int64_t latent_dim, int6
   }
   register_module("hidden", hidden_);
   mean_ = register_module("mean", torch::nn::Linear(in, action_dim));
-  log_std_ = register_module("log_std", torch::nn::Linear(in, action_dim));
+  if (state_dependent_std)
+    log_std_ = register_module("log_std", torch::nn::Linear(in, action_dim));
+  else
+    shared_log_std_ = register_parameter("shared_log_std", torch::zeros({action_dim}));
 }
 
 torch::Tensor ActionDecoderImpl::trunk(const torch::Tensor& state, const torch::Tensor& z) {
@@ -24,7 +27,9 @@ torch::Tensor ActionDecoderImpl::trunk(const torch::Tensor& state, const torch::
 
 ActionDistribution ActionDecoderImpl::forward(const torch::Tensor& state, const torch::Tensor& z) {
   const auto h = trunk(state, z);
-  return {mean_(h), soft_bound(log_std_(h), kMinLogStd, kMaxLogStd)};
+  auto mean = mean_(h);
+  auto log_std = log_std_ ? log_std_(h) : shared_log_std_.expand_as(mean);
+  return {mean, soft_bound(log_std, kMinLogStd, kMaxLogStd)};
 }
 
 torch::Tensor ActionDecoderImpl::mean(const torch::Tensor& state, const torch::Tensor& z) {

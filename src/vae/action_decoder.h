@@ -1,5 +1,6 @@
 // Action decoder pi_alpha(a_t | x_t, z) (paper section 3.1): an MLP (tanh hidden units) on
-// (x_t, z) giving the mean and log-std of a diagonal Gaussian over a_t, per step.
+// (x_t, z) giving the mean and log-std of a diagonal Gaussian over a_t, per step; or, with
+// state_dependent_std false, a learned log-std per action component shared by all steps.
 #pragma once
 
 #include <torch/torch.h>
@@ -18,7 +19,7 @@ class ActionDecoderImpl : public torch::nn::Module {
   static constexpr double kMinLogStd = -5.0, kMaxLogStd = 2.0;
 
   ActionDecoderImpl(int64_t state_dim, int64_t latent_dim, int64_t action_dim,
-                    const std::vector<int>& hidden);
+                    const std::vector<int>& hidden, bool state_dependent_std = true);
 
   // state [..., D], z [..., Z] (same leading shape) -> the Gaussian over a.
   ActionDistribution forward(const torch::Tensor& state, const torch::Tensor& z);
@@ -32,7 +33,8 @@ class ActionDecoderImpl : public torch::nn::Module {
  private:
   torch::Tensor trunk(const torch::Tensor& state, const torch::Tensor& z);
   torch::nn::ModuleList hidden_;
-  torch::nn::Linear mean_{nullptr}, log_std_{nullptr};
+  torch::nn::Linear mean_{nullptr}, log_std_{nullptr};  // log_std_: state-dependent std only
+  torch::Tensor shared_log_std_;                        // [A]: otherwise
 };
 TORCH_MODULE(ActionDecoder);
 

@@ -31,5 +31,20 @@ TEST(ActionDecoderTest, DependsOnStateAndLatent) {
   EXPECT_FALSE(torch::allclose(base, dec->mean(x + 1, z)));
 }
 
+TEST(ActionDecoderTest, ASharedStdIsTheSameAtEveryStepAndLearnsTheSpread) {
+  torch::manual_seed(7);
+  ActionDecoder dec(3, 2, 2, std::vector<int>{8}, /*state_dependent_std=*/false);
+  const auto x = torch::randn({6, 3}), z = torch::randn({6, 2});
+  const auto d = dec->forward(x, z);
+  EXPECT_TRUE(torch::equal(d.log_std, d.log_std[0].expand({6, 2})));
+  // The likelihood's gradient on the shared log-std is sum_i ((a_i - mu_i)^2 / sigma^2 - 1)
+  // (the soft bound has slope 1 at the parameter's initial 0).
+  const auto a = torch::randn({6, 2});
+  dec->log_prob(x, z, a).sum().backward();
+  const auto var = (2 * d.log_std.detach()).exp();
+  const auto expected = ((a - d.mean.detach()).square() / var - 1).sum(0);
+  EXPECT_TRUE(torch::allclose(dec->named_parameters()["shared_log_std"].grad(), expected, 1e-4, 1e-4));
+}
+
 }  // namespace
 }  // namespace vaegail::vae

@@ -42,7 +42,7 @@ TrajectoryVaeImpl::TrajectoryVaeImpl(const VaeConfig& config) : config_(config) 
       "encoder", TrajectoryEncoder(config_.state_dim, config_.lstm_hidden, config_.latent_dim));
   action_decoder_ = register_module(
       "action_decoder", ActionDecoder(config_.state_dim, config_.latent_dim, config_.action_dim,
-                                      config_.action_hidden));
+                                      config_.action_hidden, config_.action_std_depends_on_state));
   state_decoder_ = register_module("state_decoder", StateDecoder(state_decoder_options(config_)));
   state_mean_ = register_buffer("state_mean", torch::zeros({config_.state_dim}));
   state_std_ = register_buffer("state_std", torch::ones({config_.state_dim}));

@@ -83,6 +83,7 @@ std::string VaeConfig::to_json() const {
             {"mixture_components", mixture_components},
             {"position_embedding", position_embedding},
             {"action_relative_to_state", action_relative_to_state},
+            {"action_std_depends_on_state", action_std_depends_on_state},
             {"learning_rate", learning_rate},
             {"batch_size", batch_size},
             {"kl_weight", kl_weight}};
@@ -113,6 +114,8 @@ VaeConfig VaeConfig::from_json(const std::string& text, const VaeConfig& default
       else if (key == "position_embedding") c.position_embedding = it->get<bool>();
       else if (key == "action_relative_to_state")
         c.action_relative_to_state = it->get<std::vector<int>>();
+      else if (key == "action_std_depends_on_state")
+        c.action_std_depends_on_state = it->get<bool>();
       else if (key == "learning_rate") c.learning_rate = it->get<double>();
       else if (key == "batch_size") c.batch_size = it->get<int>();
       else if (key == "kl_weight") c.kl_weight = it->get<double>();
@@ -145,7 +148,8 @@ bool VaeConfig::operator==(const VaeConfig& o) const {
          action_hidden == o.action_hidden && wavenet_channels == o.wavenet_channels &&
          wavenet_layers == o.wavenet_layers && mixture_components == o.mixture_components &&
          position_embedding == o.position_embedding &&
-         action_relative_to_state == o.action_relative_to_state && learning_rate == o.learning_rate &&
+         action_relative_to_state == o.action_relative_to_state &&
+         action_std_depends_on_state == o.action_std_depends_on_state && learning_rate == o.learning_rate &&
          batch_size == o.batch_size && kl_weight == o.kl_weight;
 }
 

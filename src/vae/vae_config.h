@@ -32,6 +32,12 @@ struct VaeConfig {
   // tanh layers, and its small errors, fed back through the servos, make a rollout drift away
   // from every demonstration whatever z says.
   std::vector<int> action_relative_to_state;
+  // Not in the paper, which does not say. true: the action decoder's std is a function of
+  // (x_t, z); false: one learned std per action component. A state-dependent std lets the
+  // likelihood give up on steps whose action only z can tell (the arm's first command, the same
+  // home state for every target): a large std there makes their error cheap, and the decoder
+  // never learns to read z. A shared std weighs every step's error alike.
+  bool action_std_depends_on_state = true;
 
   // Training. The paper gives no VAE optimiser settings; these are Adam's usual ones.
   double learning_rate = 1e-4;

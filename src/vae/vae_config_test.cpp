@@ -46,6 +46,7 @@ TEST(VaeConfigTest, JsonRoundTrip) {
   c.learning_rate = 3e-4;
   c.kl_weight = 0.5;
   c.action_relative_to_state.assign(56, 3);
+  c.action_std_depends_on_state = false;
   EXPECT_EQ(VaeConfig::from_json(c.to_json()), c);
 }
 
