@@ -44,6 +44,8 @@ struct VaeConfig {
   int batch_size = 32;
   // Weight of KL(q(z|x) || N(0, I)) in the loss; 1 is the paper's objective (the ELBO).
   double kl_weight = 1.0;
+  // Adam's L2 penalty on every weight (0: none, the paper's objective).
+  double weight_decay = 0.0;
 
   // The named presets of Table 1. state_dim / action_dim depend on the environment's
   // observation and action spaces; the walker's are this project's 18 and 6.

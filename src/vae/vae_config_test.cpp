@@ -47,6 +47,7 @@ TEST(VaeConfigTest, JsonRoundTrip) {
   c.kl_weight = 0.5;
   c.action_relative_to_state.assign(56, 3);
   c.action_std_depends_on_state = false;
+  c.weight_decay = 1e-5;
   EXPECT_EQ(VaeConfig::from_json(c.to_json()), c);
 }
 

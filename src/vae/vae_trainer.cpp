@@ -103,7 +103,8 @@ VaeTrainer::VaeTrainer(const VaeConfig& config, TrainerOptions options, Trajecto
   model_->fit_normalization(train_.states, train_.actions, train_.mask);
   model_->to(options_.device);
   optimizer_ = std::make_unique<torch::optim::Adam>(
-      model_->parameters(), torch::optim::AdamOptions(config_.learning_rate));
+      model_->parameters(),
+      torch::optim::AdamOptions(config_.learning_rate).weight_decay(config_.weight_decay));
 
   std::filesystem::create_directories(std::filesystem::path(options_.run_dir) / "checkpoints");
   if (std::filesystem::exists(checkpoint_path())) load_checkpoint(checkpoint_path());

@@ -98,6 +98,16 @@ TEST_F(VaeTrainerTest, TrainingReducesTheLoss) {
   EXPECT_TRUE(std::isnan(metrics.back().val.total));
 }
 
+TEST_F(VaeTrainerTest, TheOptimiserTakesTheConfiguredLearningRateAndWeightDecay) {
+  auto c = tiny_config();
+  c.weight_decay = 1e-3;
+  VaeTrainer trainer(c, options("run", 1), toy_dataset(3, 1, false), {});
+  const auto& adam = static_cast<const torch::optim::AdamOptions&>(
+      trainer.optimizer().param_groups().front().options());
+  EXPECT_DOUBLE_EQ(adam.weight_decay(), 1e-3);
+  EXPECT_DOUBLE_EQ(adam.lr(), c.learning_rate);
+}
+
 TEST_F(VaeTrainerTest, ResumeReproducesTheUninterruptedRun) {
   const auto train = toy_dataset(8, 4, true), val = toy_dataset(3, 5, false);
   VaeTrainer straight(tiny_config(), options("straight", 3), train, val);
