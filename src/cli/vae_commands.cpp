@@ -1,6 +1,6 @@
 // `vaegail vae ...`: train the trajectory VAE on a demonstration file, embed demonstrations,
-// test the embedding with k-NN, imitate demonstrations and interpolate between them with the
-// VAE policy; and `vaegail bench vae`.
+// test the embedding with k-NN, check that the policy reads z, imitate demonstrations and
+// interpolate between them with the VAE policy; and `vaegail bench vae`.
 #include <torch/torch.h>
 
 #include <algorithm>
@@ -15,6 +15,7 @@
 #include "env/registry.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
+#include "vae/action_error.h"
 #include "vae/demo_dataset.h"
 #include "vae/embedding.h"
 #include "vae/imitation.h"
@@ -185,6 +186,34 @@ void add_knn(CLI::App& vae) {
   });
 }
 
+// ---- vae action-error -----------------------------------------------------------------
+void print_action_errors(Loaded& l, const std::vector<int64_t>& episodes, const char* label) {
+  if (episodes.empty()) return;
+  const auto mu = encode_with_progress(l.model, l.demos, episodes);
+  const auto data = vae::to_trajectory_dataset(l.demos, episodes, l.model->config());
+  for (const auto& row : vae::action_error_by_z_source(l.model, data, mu))
+    std::printf("| %s (%zu) | %s | %.3f | %.3f |\n", label, episodes.size(), row.z_source.c_str(),
+                row.error.first_step, row.error.later_steps);
+}
+
+void add_action_error(CLI::App& vae) {
+  auto f = std::make_shared<ModelFlags>();
+  CLI::App* c = vae.add_subcommand("action-error", "teacher-forced action error of the VAE policy with the "
+                                                   "demonstration's own z, another's and z = 0: does it read z?");
+  add_model_flags(*c, *f);
+  c->callback([f] {
+    torch::NoGradGuard no_grad;
+    auto l = load(*f);
+    std::vector<int64_t> training, held_out;
+    for (int64_t i : all_episodes(l.demos))
+      (vae::is_held_out(l.demos.episodes[i]) ? held_out : training).push_back(i);
+    std::printf("RMS error of the mean action against the demonstration's, on its own states (action units):\n\n"
+                "| demonstrations | z | first step | later steps |\n|---|---|---|---|\n");
+    print_action_errors(l, training, "training experts");
+    print_action_errors(l, held_out, "held-out experts");
+  });
+}
+
 // ---- vae imitate ----------------------------------------------------------------------
 struct ImitateFlags {
   ModelFlags model;
@@ -346,6 +375,7 @@ void add_vae_commands(CLI::App& app) {
   add_train(*vae);
   add_embed(*vae);
   add_knn(*vae);
+  add_action_error(*vae);
   add_imitate(*vae);
   add_interpolate(*vae);
   add_bench_vae(*app.get_subcommand("bench"));  // add_bench_commands runs first
