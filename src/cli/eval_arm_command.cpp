@@ -1,7 +1,7 @@
 // `vaegail eval arm`: the paper's arm experiment (section 4.1). The VAE policy imitates the
 // test experts' demonstrations (and some training ones) from the home pose; the end effector's
 // final distance to the demonstration's end point is summarised (Figure 2's paths drawn), and
-// pairs of test demonstrations from different experts are interpolated in latent space
+// pairs of test (or training) demonstrations from different experts are interpolated in latent space
 // (Figure 3), each pair judged by whether its reached end points move monotonically along the
 // segment between the demonstrations' end points.
 #include <torch/torch.h>
@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct EvalArmFlags {
-  std::string demos, vae, out_dir, device = "cpu";
+  std::string demos, vae, out_dir, device = "cpu", pairs_from = "test";
   int training_per_expert = 3, pair_experts = 10, drawn_paths = 10, drawn_pairs = 3;
   double monotone_tolerance = 0.0;
   vae::ImitationOptions rollout;
@@ -49,11 +49,11 @@ std::vector<int64_t> training_episodes(const DemoSet& demos, int per_expert) {
   return out;
 }
 
-// The first test demonstration of each of the first `experts` test experts, every pair of them.
-std::vector<std::pair<int64_t, int64_t>> test_pairs(const DemoSet& demos, const std::vector<int64_t>& test, int experts) {
+// The first demonstration in `pool` of each of its first `experts` experts, every pair of them.
+std::vector<std::pair<int64_t, int64_t>> expert_pairs(const DemoSet& demos, const std::vector<int64_t>& pool, int experts) {
   std::vector<int64_t> firsts;
   std::map<std::string, bool> seen;
-  for (int64_t i : test)
+  for (int64_t i : pool)
     if (!seen[demos.episodes[i].expert_id] && static_cast<int>(firsts.size()) < experts) {
       seen[demos.episodes[i].expert_id] = true;
       firsts.push_back(i);
@@ -75,7 +75,8 @@ std::string distance_line(const std::string& which, const std::vector<eval::Reac
   return line;
 }
 
-std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pairs, double tolerance) {
+std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pairs, const std::string& pool,
+                                  double tolerance) {
   int monotone = 0;
   std::vector<double> off, off_relative, mid_along;
   for (const auto& p : pairs) {
@@ -88,14 +89,14 @@ std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pa
   }
   char text[700];
   std::snprintf(text, sizeof text,
-                "Latent interpolation over %zu pairs of test demonstrations (different experts), alpha in "
+                "Latent interpolation over %zu pairs of %s demonstrations (different experts), alpha in "
                 "{0, 0.25, 0.5, 0.75, 1}:\n\n"
                 "- end point moves monotonically from a's end to b's (tolerance %.2f of the segment): **%d of %zu "
                 "pairs (%.0f%%)**\n"
                 "- distance of the reached end points from the line through the two demonstrations' end points: "
                 "median %.1f cm, 90th percentile %.1f cm (median %.0f%% of the segment's length)\n"
                 "- at alpha 0.5 the end point lies at median s = %.2f along the segment (0: a's end, 1: b's end)\n",
-                pairs.size(), tolerance, monotone, pairs.size(), 100.0 * monotone / std::max<size_t>(pairs.size(), 1),
+                pairs.size(), pool.c_str(), tolerance, monotone, pairs.size(), 100.0 * monotone / std::max<size_t>(pairs.size(), 1),
                 100 * vae::median(off), 100 * eval::summarize_distances(off).p90, 100 * vae::median(off_relative),
                 vae::median(mid_along));
   return text;
@@ -115,7 +116,7 @@ void run_eval_arm(const EvalArmFlags& f) {
   const auto test = held_out_episodes(demos);
   auto episodes = training_episodes(demos, f.training_per_expert);
   episodes.insert(episodes.end(), test.begin(), test.end());
-  const auto pairs = test_pairs(demos, test, f.pair_experts);
+  const auto pairs = expert_pairs(demos, f.pairs_from == "test" ? test : training_episodes(demos, 1), f.pair_experts);
   Progress progress("eval arm", static_cast<std::int64_t>(episodes.size()), "rollouts");
   const auto z = vae::encode_episodes(model, demos, episodes);
   const auto rows = eval::imitate_reaches(*env, demos, episodes, z, policy, f.rollout, &progress);
@@ -134,7 +135,7 @@ void run_eval_arm(const EvalArmFlags& f) {
       "Final end-effector distance between the VAE policy's imitation and the demonstration (cm):\n\n"
       "| demonstrations | n | mean | median | 90th percentile |\n|---|---|---|---|---|\n" +
       distance_line("test experts (unseen)", rows, true) + distance_line("training experts", rows, false) + "\n" +
-      interpolation_summary(interpolations, f.monotone_tolerance);
+      interpolation_summary(interpolations, f.pairs_from + " experts'", f.monotone_tolerance);
   write_file_atomically(f.out_dir + "/reaches.csv", eval::reach_rows_csv(rows));
   write_file_atomically(f.out_dir + "/interpolation.csv", eval::interpolation_csv(interpolations));
   write_file_atomically(f.out_dir + "/summary.md", table);
@@ -167,7 +168,9 @@ void add_eval_arm(CLI::App& eval) {
   c->add_option("--out-dir", f->out_dir, "where the CSVs, the table and the PNGs go")->required();
   c->add_option("--training-per-expert", f->training_per_expert, "training demonstrations imitated per expert, for comparison")
       ->check(CLI::Range(0, 1 << 20))->capture_default_str();
-  c->add_option("--pair-experts", f->pair_experts, "test experts whose first demonstrations are paired (all pairs)")
+  c->add_option("--pairs-from", f->pairs_from, "whose demonstrations are interpolated: the test experts' or the training experts'")
+      ->check(CLI::IsMember({"test", "training"}))->capture_default_str();
+  c->add_option("--pair-experts", f->pair_experts, "experts whose first demonstrations are paired (all pairs)")
       ->check(CLI::Range(2, 1000))->capture_default_str();
   c->add_option("--monotone-tolerance", f->monotone_tolerance, "allowed step back along the segment, as a fraction of it")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
