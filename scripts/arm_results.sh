@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The arm results of docs/results.md (paper section 4.1), from the published demonstrations and VAE.
-# Usage: scripts/arm_results.sh [OUT_DIR]   (default results/arm; about a minute on 2 cores)
+# The arm results of docs/results.md (paper section 4.1), from the published demonstrations and a
+# VAE trained by the README's command (its checkpoint is not in the repository).
+# Usage: scripts/arm_results.sh [OUT_DIR]   (default results/arm; about two minutes on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/arm}
@@ -11,5 +12,10 @@ mkdir -p "$out"
 
 $v plot curves --csv checkpoints/arm/vae/metrics.csv --y train_loss,val_loss --log-y \
     --title "arm VAE: loss per epoch" --out "$out/vae_loss.png"
-# Figure 2 (imitation of unseen experts' demonstrations) and Figure 3 (latent interpolation).
+# Does the policy read z? Teacher-forced action error with the own, another and a zero z.
+$v vae action-error --checkpoint $vae --demos $demos | tee "$out/action_error.txt"
+# Figure 2 (imitation of unseen experts' demonstrations) and Figure 3 (latent interpolation),
+# between test experts' demonstrations and between training experts'.
 $v eval arm --demos $demos --vae $vae --out-dir "$out/eval" | tee "$out/eval.txt"
+$v eval arm --demos $demos --vae $vae --out-dir "$out/eval_training_pairs" --pairs-from training \
+    --training-per-expert 1 | tee "$out/eval_training_pairs.txt"
