@@ -7,23 +7,14 @@
 namespace vaegail::vae {
 namespace {
 
-TrajectoryVae tiny_vae() {
-  VaeConfig c = VaeConfig::walker(4, 2);
-  c.lstm_hidden = 8;
-  c.latent_dim = 3;
-  c.action_hidden = {16};
-  c.wavenet_channels = 4;
-  c.wavenet_layers = 1;
-  c.mixture_components = 1;
-  return TrajectoryVae(c);
-}
+TrajectoryVae tiny_vae() { return TrajectoryVae(testing::tiny_vae_config(4, 2)); }
 
 // Demonstrations whose actions are the decoder's own mean under z, shifted by (first, later).
 TrajectoryDataset shifted_demos(TrajectoryVae& vae, const torch::Tensor& z, float first, float later) {
   torch::NoGradGuard no_grad;
   auto [states, actions] = testing::toy_trajectories(4, 5, 4, 2, 1);
   vae->fit_normalization(states, actions);
-  const auto z_steps = z.unsqueeze(1).expand({4, 5, 3});
+  const auto z_steps = z.unsqueeze(1).expand({4, 5, 2});
   auto shift = torch::full({4, 5, 2}, later);
   shift.select(1, 0).fill_(first);
   return {states, vae->action_mean(states.narrow(1, 0, 5), z_steps) + shift, {}};
@@ -32,18 +23,18 @@ TrajectoryDataset shifted_demos(TrajectoryVae& vae, const torch::Tensor& z, floa
 TEST(ActionErrorTest, IsTheRmsOfTheActionErrorAtTheFirstAndTheLaterSteps) {
   torch::manual_seed(3);
   auto vae = tiny_vae();
-  const auto z = torch::randn({4, 3});
+  const auto z = torch::randn({4, 2});
   const auto data = shifted_demos(vae, z, 0.5f, -0.25f);
   const auto e = teacher_forced_action_error(vae, data, z);
   EXPECT_NEAR(e.first_step, 0.5, 1e-5);
   EXPECT_NEAR(e.later_steps, 0.25, 1e-5);
-  EXPECT_THROW(teacher_forced_action_error(vae, data, torch::zeros({3, 3})), std::invalid_argument);
+  EXPECT_THROW(teacher_forced_action_error(vae, data, torch::zeros({3, 2})), std::invalid_argument);
 }
 
 TEST(ActionErrorTest, OnlyTheOwnZReproducesADecoderThatReadsZ) {
   torch::manual_seed(4);
   auto vae = tiny_vae();
-  const auto z = 3 * torch::randn({4, 3});
+  const auto z = 3 * torch::randn({4, 2});
   auto data = shifted_demos(vae, z, 0.0f, 0.0f);
   const auto rows = action_error_by_z_source(vae, data, z);
   ASSERT_EQ(rows.size(), 3u);

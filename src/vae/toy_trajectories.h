@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "vae/vae_config.h"
+
 namespace vaegail::vae::testing {
 
 // M trajectories of T steps with D state and A action components. Trajectory m has its own
@@ -22,6 +24,18 @@ inline std::pair<torch::Tensor, torch::Tensor> toy_trajectories(int64_t M, int64
   const auto w = torch::linspace(-1, 1, D * A, opts).view({D, A});
   const auto actions = torch::tanh(torch::matmul(states.narrow(1, 0, T), w));
   return {states, actions};
+}
+
+// A VAE small enough for a unit test: z 2, BiLSTM 16, decoder (32, 32), WaveNet 8 x 2, 2 Gaussians.
+inline VaeConfig tiny_vae_config(int64_t D = 4, int64_t A = 2) {
+  VaeConfig c = VaeConfig::walker(static_cast<int>(D), static_cast<int>(A));
+  c.lstm_hidden = 16;
+  c.latent_dim = 2;
+  c.action_hidden = {32, 32};
+  c.wavenet_channels = 8;
+  c.wavenet_layers = 2;
+  c.mixture_components = 2;
+  return c;
 }
 
 }  // namespace vaegail::vae::testing

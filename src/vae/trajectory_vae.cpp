@@ -48,6 +48,8 @@ TrajectoryVaeImpl::TrajectoryVaeImpl(const VaeConfig& config) : config_(config) 
   state_std_ = register_buffer("state_std", torch::ones({config_.state_dim}));
   action_mean_ = register_buffer("action_mean", torch::zeros({config_.action_dim}));
   action_std_ = register_buffer("action_std", torch::ones({config_.action_dim}));
+  const auto& k = config_.action_relative_to_state;
+  if (!k.empty()) offset_index_ = torch::tensor(std::vector<int64_t>(k.begin(), k.end()), torch::kLong);
 }
 
 torch::Tensor TrajectoryVaeImpl::modelled_actions(const torch::Tensor& states,
@@ -57,11 +59,8 @@ torch::Tensor TrajectoryVaeImpl::modelled_actions(const torch::Tensor& states,
 }
 
 torch::Tensor TrajectoryVaeImpl::action_offset(const torch::Tensor& state) const {
-  const auto& k = config_.action_relative_to_state;
-  if (k.empty()) return torch::zeros({}, state.options());
-  const auto index = torch::tensor(std::vector<int64_t>(k.begin(), k.end()),
-                                   torch::TensorOptions(torch::kLong).device(state.device()));
-  return state.index_select(-1, index);
+  if (!offset_index_.defined()) return torch::zeros({}, state.options());
+  return state.index_select(-1, offset_index_.to(state.device()));
 }
 
 void TrajectoryVaeImpl::fit_normalization(const torch::Tensor& states,

@@ -89,6 +89,9 @@ class TrajectoryVaeImpl : public torch::nn::Module {
 
   // x[..., k_j] for each action component j: [..., A] raw; a scalar 0 without offsets.
   torch::Tensor action_offset(const torch::Tensor& state) const;
+  // The k_j (CPU, int64; not a buffer, so that checkpoints keep their layout); undefined
+  // without offsets.
+  torch::Tensor offset_index_;
 };
 TORCH_MODULE(TrajectoryVae);
 

@@ -7,16 +7,7 @@
 namespace vaegail::vae {
 namespace {
 
-VaeConfig tiny_config(int64_t D = 4, int64_t A = 2) {
-  VaeConfig c = VaeConfig::walker(static_cast<int>(D), static_cast<int>(A));
-  c.lstm_hidden = 16;
-  c.latent_dim = 2;
-  c.action_hidden = {32, 32};
-  c.wavenet_channels = 8;
-  c.wavenet_layers = 2;
-  c.mixture_components = 2;
-  return c;
-}
+using testing::tiny_vae_config;
 
 class TrajectoryVaeTest : public ::testing::Test {
  protected:
@@ -27,7 +18,7 @@ class TrajectoryVaeTest : public ::testing::Test {
 };
 
 TEST_F(TrajectoryVaeTest, LossTermsAddUp) {
-  auto c = tiny_config();
+  auto c = tiny_vae_config();
   c.kl_weight = 0.25;
   TrajectoryVae vae(c);
   const auto [states, actions] = testing::toy_trajectories(3, 10, 4, 2, 1);
@@ -44,7 +35,7 @@ TEST_F(TrajectoryVaeTest, LossTermsAddUp) {
 
 TEST_F(TrajectoryVaeTest, LossIsTheSumOfTheThreeDensities) {
   // Recompute the objective of one trajectory from the parts, with z fixed through the noise.
-  TrajectoryVae vae(tiny_config());
+  TrajectoryVae vae(tiny_vae_config());
   const auto [states, actions] = testing::toy_trajectories(1, 6, 4, 2, 2);
   vae->fit_normalization(states, actions);
   const auto noise = torch::randn({1, 2});
@@ -65,7 +56,7 @@ TEST_F(TrajectoryVaeTest, LossIsTheSumOfTheThreeDensities) {
 }
 
 TEST_F(TrajectoryVaeTest, ActionsRelativeToTheStateAreModelledAsTheirDifference) {
-  auto c = tiny_config();
+  auto c = tiny_vae_config();
   c.action_relative_to_state = {2, 0};
   TrajectoryVae vae(c);
   const auto [states, actions] = testing::toy_trajectories(3, 6, 4, 2, 5);
@@ -94,7 +85,7 @@ TEST_F(TrajectoryVaeTest, ActionsRelativeToTheStateAreModelledAsTheirDifference)
 }
 
 TEST_F(TrajectoryVaeTest, MaskedLossEqualsLossOfTheTruncatedTrajectory) {
-  TrajectoryVae vae(tiny_config());
+  TrajectoryVae vae(tiny_vae_config());
   const auto [states, actions] = testing::toy_trajectories(2, 8, 4, 2, 3);
   vae->fit_normalization(states, actions);
   const auto noise = torch::randn({2, 2});
@@ -116,7 +107,7 @@ TEST_F(TrajectoryVaeTest, MaskedLossEqualsLossOfTheTruncatedTrajectory) {
 }
 
 TEST_F(TrajectoryVaeTest, NormalisationIsStoredInTheModule) {
-  TrajectoryVae vae(tiny_config());
+  TrajectoryVae vae(tiny_vae_config());
   const auto [states, actions] = testing::toy_trajectories(4, 5, 4, 2, 4);
   vae->fit_normalization(states, actions);
   const auto x = vae->normalize_states(states.reshape({-1, 4}));
@@ -126,7 +117,7 @@ TEST_F(TrajectoryVaeTest, NormalisationIsStoredInTheModule) {
   ASSERT_TRUE(buffers.contains("state_mean") && buffers.contains("action_std"));
   std::stringstream stream;
   torch::save(vae, stream);
-  TrajectoryVae copy(tiny_config());
+  TrajectoryVae copy(tiny_vae_config());
   torch::load(copy, stream);
   EXPECT_TRUE(torch::equal(copy->named_buffers()["state_std"], buffers["state_std"]));
   EXPECT_TRUE(torch::allclose(copy->action_mean(states.select(1, 0), torch::zeros({4, 2})),
@@ -134,7 +125,7 @@ TEST_F(TrajectoryVaeTest, NormalisationIsStoredInTheModule) {
 }
 
 TEST_F(TrajectoryVaeTest, OverfitsTwoTrajectoriesAndSeparatesTheirEmbeddings) {
-  TrajectoryVae vae(tiny_config());
+  TrajectoryVae vae(tiny_vae_config());
   auto [states, actions] = testing::toy_trajectories(2, 20, 4, 2, 9);
   vae->fit_normalization(states, actions);
   torch::optim::Adam opt(vae->parameters(), torch::optim::AdamOptions(1e-2));
@@ -159,7 +150,7 @@ TEST_F(TrajectoryVaeTest, OverfitsTwoTrajectoriesAndSeparatesTheirEmbeddings) {
 }
 
 TEST_F(TrajectoryVaeTest, RolloutHelpersWorkInRawUnits) {
-  TrajectoryVae vae(tiny_config());
+  TrajectoryVae vae(tiny_vae_config());
   const auto [states, actions] = testing::toy_trajectories(3, 4, 4, 2, 10);
   vae->fit_normalization(states, actions);
   const auto z = torch::zeros({3, 2});
