@@ -4,6 +4,7 @@
 #include <functional>
 #include <mutex>
 #include <numeric>
+#include <set>
 #include <thread>
 
 #include "cli/commands.h"
@@ -181,6 +182,19 @@ std::vector<std::string> expert_dirs(const std::string& root, const std::vector<
   return dirs;
 }
 
+// Several directories: their runs in order, each id once.
+std::vector<std::string> expert_dirs(const std::vector<std::string>& roots, const std::vector<std::string>& only) {
+  std::vector<std::string> dirs;
+  std::set<std::string> ids;
+  for (const auto& root : roots)
+    for (auto& dir : expert_dirs(root, only)) {
+      if (!ids.insert(fs::path(dir).filename().string()).second)
+        throw std::runtime_error(dir + ": expert id repeats another --experts-dir");
+      dirs.push_back(std::move(dir));
+    }
+  return dirs;
+}
+
 struct EvalFlags {
   std::string dir = "experts/walker";
   std::vector<std::string> only;
@@ -226,13 +240,13 @@ void run_eval(const EvalFlags& f) {
 
 struct CollectFlags {
   std::string task = "walker";
-  std::string dir = "experts/walker";
+  std::vector<std::string> dirs = {"experts/walker"};
   int episodes = 0;  // 0: the task's paper value (walker 20, arm 30)
   double noise = ArmCollectOptions{}.noise_std;
   std::vector<std::string> only;
   std::string out;
   std::vector<std::string> held_out;
-  std::string passing;
+  std::vector<std::string> passing;
   CollectOptions collect;
   bool force = false;
 };
@@ -240,16 +254,17 @@ struct CollectFlags {
 void run_collect(CollectFlags f) {
   if (fs::exists(f.out) && !f.force) throw std::runtime_error(f.out + ": exists (pass --force to replace it)");
   std::vector<std::string> only = f.only;
-  if (!f.passing.empty()) {  // keep experts that passed the bar in an `experts eval --json` report
-    const auto report = nlohmann::json::parse(read_file(f.passing));
+  for (const auto& path : f.passing) {  // keep experts that passed the bar in `experts eval --json` reports
+    const auto report = nlohmann::json::parse(read_file(path));
+    const auto before = only.size();
     for (const auto& e : report)
       if (e.at("passes").get<bool>()) only.push_back(e.at("id"));
-    if (only.empty()) throw std::runtime_error(f.passing + ": no expert passes the bar");
+    if (only.size() == before) throw std::runtime_error(path + ": no expert passes the bar");
   }
-  const auto dirs = expert_dirs(f.dir, only);
+  const auto dirs = expert_dirs(f.dirs, only);
   for (const auto& id : f.held_out)
     if (std::none_of(dirs.begin(), dirs.end(), [&](const std::string& d) { return fs::path(d).filename() == id; }))
-      throw std::invalid_argument("--held-out " + id + ": no such expert in " + f.dir);
+      throw std::invalid_argument("--held-out " + id + ": no such expert in --experts-dir");
   if (fs::path(f.out).has_parent_path()) fs::create_directories(fs::path(f.out).parent_path());
   int episodes = f.episodes;
   if (f.task == "arm") {
@@ -312,9 +327,9 @@ void add_expert_commands(CLI::App& app) {
   CLI::App* collect = demos->add_subcommand("collect", "roll experts out into an HDF5 demonstration file");
   collect->add_option("--task", c->task, "walker or arm (the experts' kind)")
       ->check(CLI::IsMember({"walker", "arm"}))->capture_default_str();
-  collect->add_option("--experts-dir", c->dir, "directory of expert runs")->capture_default_str();
+  collect->add_option("--experts-dir", c->dirs, "directories of expert runs (expert ids must not repeat across them)")->capture_default_str();
   collect->add_option("--only", c->only, "collect only from these expert ids");
-  collect->add_option("--passing", c->passing, "collect only from experts that pass in this `experts eval --json` report")
+  collect->add_option("--passing", c->passing, "collect only from experts that pass in these `experts eval --json` reports")
       ->check(CLI::ExistingFile);
   collect->add_option("--out", c->out, "output .h5 file")->required();
   collect->add_option("--episodes-per-expert", c->episodes, "episodes per expert (default: walker 20, arm 30, as the paper)")

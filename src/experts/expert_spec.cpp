@@ -1,6 +1,7 @@
 #include "experts/expert_spec.h"
 
 #include <cstdio>
+#include <stdexcept>
 
 namespace vaegail {
 
@@ -26,7 +27,7 @@ std::vector<ExpertSpec> expand(const ExpertGrid& grid) {
   std::vector<ExpertSpec> specs;
   for (const auto& group : grid.groups)
     for (double log_std : grid.init_log_stds)
-      for (int seed = 0; seed < grid.seeds; ++seed) {
+      for (int seed = grid.first_seed; seed < grid.first_seed + grid.seeds; ++seed) {
         ExpertSpec s;
         s.targets = group;
         s.init_log_std = log_std;
@@ -51,13 +52,15 @@ void from_json(const nlohmann::json& j, ExpertSpec& s) {
 }
 
 void to_json(nlohmann::json& j, const ExpertGrid& g) {
-  j = {{"groups", g.groups}, {"init_log_stds", g.init_log_stds}, {"seeds", g.seeds}};
+  j = {{"groups", g.groups}, {"init_log_stds", g.init_log_stds}, {"seeds", g.seeds}, {"first_seed", g.first_seed}};
 }
 
 void from_json(const nlohmann::json& j, ExpertGrid& g) {
   j.at("groups").get_to(g.groups);
   j.at("init_log_stds").get_to(g.init_log_stds);
   j.at("seeds").get_to(g.seeds);
+  g.first_seed = j.value("first_seed", 0);
+  if (g.seeds < 1 || g.first_seed < 0) throw std::invalid_argument("grid: seeds must be >= 1 and first_seed >= 0");
 }
 
 }  // namespace vaegail

@@ -25,6 +25,7 @@ struct ExpertGrid {
   std::vector<std::vector<double>> groups;
   std::vector<double> init_log_stds;
   int seeds = 1;
+  int first_seed = 0;  // seeds first_seed .. first_seed + seeds - 1: a later grid adds experts to an earlier one
 };
 
 // The paper: {-1}, {0}, {1}, {3}, {-1, 0, 1}, {-1, 0, 3} x log-std {0, -1, -2, -3} x 3 seeds.

@@ -32,5 +32,23 @@ TEST(ExpertSpec, JsonRoundTrip) {
   EXPECT_EQ(expand(g).size(), 72u);
 }
 
+TEST(ExpertSpec, AFirstSeedContinuesAnEarlierGridWithoutReusingItsIds) {
+  ExpertGrid earlier{{{-1}, {1}}, {-1, 0}, 4};
+  ExpertGrid later = earlier;
+  later.first_seed = 4;
+  std::set<std::string> ids;
+  for (const auto& s : expand(earlier)) ids.insert(s.id);
+  for (const auto& s : expand(later)) {
+    EXPECT_GE(s.seed, 4u);
+    EXPECT_LT(s.seed, 8u);
+    EXPECT_TRUE(ids.insert(s.id).second) << s.id;
+  }
+  EXPECT_EQ(ids.size(), 32u);
+  const auto back = nlohmann::json::parse(R"({"groups": [[0]], "init_log_stds": [-1], "seeds": 2, "first_seed": 6})")
+                        .get<ExpertGrid>();
+  EXPECT_EQ(expand(back).back().id, "speed0_logstd-1_seed7");
+  EXPECT_EQ(nlohmann::json(later).get<ExpertGrid>().first_seed, 4);
+}
+
 }  // namespace
 }  // namespace vaegail

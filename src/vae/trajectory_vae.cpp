@@ -133,7 +133,13 @@ VaeLoss TrajectoryVaeImpl::loss(const torch::Tensor& states, const torch::Tensor
     a = torch::where(step_mask.unsqueeze(-1), a, torch::zeros_like(a));
   }
 
-  const auto q = encoder_->forward(x, state_mask);
+  auto encoder_x = x;
+  if (is_training() && config_.encoder_input_noise > 0) {
+    encoder_x = x + config_.encoder_input_noise * torch::randn_like(x);
+    if (state_mask.defined())
+      encoder_x = torch::where(state_mask.unsqueeze(-1), encoder_x, torch::zeros_like(encoder_x));
+  }
+  const auto q = encoder_->forward(encoder_x, state_mask);
   const auto eps = noise.defined() ? noise.to(q.mean.device()) : torch::randn_like(q.mean);
   TORCH_CHECK(eps.sizes() == q.mean.sizes(), "TrajectoryVae::loss: noise must be [B, Z]");
   const auto z = reparameterize(q.mean, q.log_std, eps);

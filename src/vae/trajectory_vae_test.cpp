@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "vae/gaussian.h"
 #include "vae/toy_trajectories.h"
 
 namespace vaegail::vae {
@@ -53,6 +54,33 @@ TEST_F(TrajectoryVaeTest, LossIsTheSumOfTheThreeDensities) {
   }
   EXPECT_NEAR(loss.action_nll.item<double>(), -action_lp, 1e-3);
   EXPECT_NEAR(loss.state_nll.item<double>(), -state_lp, 1e-3);
+}
+
+TEST_F(TrajectoryVaeTest, EncoderInputNoiseReachesOnlyTheEncoderAndOnlyInTraining) {
+  auto c = tiny_vae_config();
+  c.encoder_input_noise = 0.5;
+  TrajectoryVae vae(c);
+  const auto [states, actions] = testing::toy_trajectories(2, 6, 4, 2, 3);
+  vae->fit_normalization(states, actions);
+  const auto eps = torch::randn({2, 2});
+  const auto x = vae->normalize_states(states), a = vae->normalize_actions(actions);
+
+  torch::manual_seed(21);
+  const auto noisy = vae->loss(states, actions, {}, eps);
+  torch::manual_seed(21);
+  const auto q = vae->encoder()->forward(x + 0.5 * torch::randn_like(x));
+  const auto z = q.mean + q.log_std.exp() * eps;
+  double action_lp = 0;
+  for (int t = 0; t < 6; ++t)
+    action_lp += vae->action_decoder()->log_prob(x.select(1, t), z, a.select(1, t)).sum().item<double>();
+  EXPECT_NEAR(noisy.action_nll.item<double>(), -action_lp / 2, 1e-3);  // the decoder saw clean states
+  EXPECT_NEAR(noisy.kl.item<double>(), kl_to_standard_normal(q.mean, q.log_std).mean().item<double>(), 1e-4);
+
+  vae->eval();
+  const auto clean = vae->loss(states, actions, {}, eps);
+  const auto q_clean = vae->encoder()->forward(x);
+  EXPECT_NEAR(clean.kl.item<double>(), kl_to_standard_normal(q_clean.mean, q_clean.log_std).mean().item<double>(), 1e-4);
+  EXPECT_GT(std::abs(clean.kl.item<double>() - noisy.kl.item<double>()), 1e-4);
 }
 
 TEST_F(TrajectoryVaeTest, ActionsRelativeToTheStateAreModelledAsTheirDifference) {

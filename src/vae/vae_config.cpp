@@ -65,6 +65,7 @@ void VaeConfig::validate() const {
   require(batch_size >= 1, "batch_size must be >= 1");
   require(kl_weight >= 0, "kl_weight must be >= 0");
   require(weight_decay >= 0, "weight_decay must be >= 0");
+  require(encoder_input_noise >= 0, "encoder_input_noise must be >= 0");
   require(action_relative_to_state.empty() ||
               static_cast<int>(action_relative_to_state.size()) == action_dim,
           "action_relative_to_state must be empty or have action_dim entries");
@@ -88,7 +89,8 @@ std::string VaeConfig::to_json() const {
             {"learning_rate", learning_rate},
             {"batch_size", batch_size},
             {"kl_weight", kl_weight},
-            {"weight_decay", weight_decay}};
+            {"weight_decay", weight_decay},
+            {"encoder_input_noise", encoder_input_noise}};
   return j.dump(2) + "\n";
 }
 
@@ -122,6 +124,7 @@ VaeConfig VaeConfig::from_json(const std::string& text, const VaeConfig& default
       else if (key == "batch_size") c.batch_size = it->get<int>();
       else if (key == "kl_weight") c.kl_weight = it->get<double>();
       else if (key == "weight_decay") c.weight_decay = it->get<double>();
+      else if (key == "encoder_input_noise") c.encoder_input_noise = it->get<double>();
       else throw std::invalid_argument("VaeConfig: unknown key '" + key + "'");
     } catch (const json::exception& e) {
       throw std::invalid_argument("VaeConfig: bad value for '" + key + "': " + e.what());
@@ -153,7 +156,8 @@ bool VaeConfig::operator==(const VaeConfig& o) const {
          position_embedding == o.position_embedding &&
          action_relative_to_state == o.action_relative_to_state &&
          action_std_depends_on_state == o.action_std_depends_on_state && learning_rate == o.learning_rate &&
-         batch_size == o.batch_size && kl_weight == o.kl_weight && weight_decay == o.weight_decay;
+         batch_size == o.batch_size && kl_weight == o.kl_weight && weight_decay == o.weight_decay &&
+         encoder_input_noise == o.encoder_input_noise;
 }
 
 }  // namespace vaegail::vae

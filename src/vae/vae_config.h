@@ -46,6 +46,12 @@ struct VaeConfig {
   double kl_weight = 1.0;
   // Adam's L2 penalty on every weight (0: none, the paper's objective).
   double weight_decay = 0.0;
+  // Not in the paper. Std of Gaussian noise added to the encoder's input (normalised states)
+  // during training only; the decoders see clean states. An encoder that must name a
+  // demonstration through noise has to rest on what the whole trajectory shows (where the arm
+  // comes to rest) rather than on small idiosyncrasies that tell 50 training experts apart
+  // and say nothing about an unseen one.
+  double encoder_input_noise = 0.0;
 
   // The named presets of Table 1. state_dim / action_dim depend on the environment's
   // observation and action spaces; the walker's are this project's 18 and 6.

@@ -48,6 +48,7 @@ TEST(VaeConfigTest, JsonRoundTrip) {
   c.action_relative_to_state.assign(56, 3);
   c.action_std_depends_on_state = false;
   c.weight_decay = 1e-5;
+  c.encoder_input_noise = 0.3;
   EXPECT_EQ(VaeConfig::from_json(c.to_json()), c);
 }
 
