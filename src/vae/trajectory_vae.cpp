@@ -39,7 +39,10 @@ torch::Tensor state_mask_from_step_mask(const torch::Tensor& step_mask) {
 TrajectoryVaeImpl::TrajectoryVaeImpl(const VaeConfig& config) : config_(config) {
   config_.validate();
   encoder_ = register_module(
-      "encoder", TrajectoryEncoder(config_.state_dim, config_.lstm_hidden, config_.latent_dim));
+      "encoder", TrajectoryEncoder(config_.encoder_state_indices.empty()
+                                       ? config_.state_dim
+                                       : static_cast<int>(config_.encoder_state_indices.size()),
+                                   config_.lstm_hidden, config_.latent_dim));
   action_decoder_ = register_module(
       "action_decoder", ActionDecoder(config_.state_dim, config_.latent_dim, config_.action_dim,
                                       config_.action_hidden, config_.action_std_depends_on_state));
@@ -50,6 +53,8 @@ TrajectoryVaeImpl::TrajectoryVaeImpl(const VaeConfig& config) : config_(config) 
   action_std_ = register_buffer("action_std", torch::ones({config_.action_dim}));
   const auto& k = config_.action_relative_to_state;
   if (!k.empty()) offset_index_ = torch::tensor(std::vector<int64_t>(k.begin(), k.end()), torch::kLong);
+  const auto& e = config_.encoder_state_indices;
+  if (!e.empty()) encoder_index_ = torch::tensor(std::vector<int64_t>(e.begin(), e.end()), torch::kLong);
 }
 
 torch::Tensor TrajectoryVaeImpl::modelled_actions(const torch::Tensor& states,
@@ -105,12 +110,18 @@ double TrajectoryVaeImpl::action_log_jacobian() const {
   return -action_std_.log().sum().item<double>();
 }
 
+torch::Tensor TrajectoryVaeImpl::encoder_input(const torch::Tensor& x, const torch::Tensor& state_mask,
+                                               bool add_noise) const {
+  auto in = encoder_index_.defined() ? x.index_select(2, encoder_index_.to(x.device())) : x;
+  if (add_noise && config_.encoder_input_noise > 0) in = in + config_.encoder_input_noise * torch::randn_like(in);
+  if (state_mask.defined())
+    in = torch::where(state_mask.to(torch::kBool).unsqueeze(-1), in, torch::zeros_like(in));
+  return in;
+}
+
 EncoderOutput TrajectoryVaeImpl::encode(const torch::Tensor& states,
                                         const torch::Tensor& state_mask) {
-  auto x = normalize_states(states);
-  if (state_mask.defined())
-    x = torch::where(state_mask.to(torch::kBool).unsqueeze(-1), x, torch::zeros_like(x));
-  return encoder_->forward(x, state_mask);
+  return encoder_->forward(encoder_input(normalize_states(states), state_mask, false), state_mask);
 }
 
 VaeLoss TrajectoryVaeImpl::loss(const torch::Tensor& states, const torch::Tensor& actions,
@@ -133,13 +144,7 @@ VaeLoss TrajectoryVaeImpl::loss(const torch::Tensor& states, const torch::Tensor
     a = torch::where(step_mask.unsqueeze(-1), a, torch::zeros_like(a));
   }
 
-  auto encoder_x = x;
-  if (is_training() && config_.encoder_input_noise > 0) {
-    encoder_x = x + config_.encoder_input_noise * torch::randn_like(x);
-    if (state_mask.defined())
-      encoder_x = torch::where(state_mask.unsqueeze(-1), encoder_x, torch::zeros_like(encoder_x));
-  }
-  const auto q = encoder_->forward(encoder_x, state_mask);
+  const auto q = encoder_->forward(encoder_input(x, state_mask, is_training()), state_mask);
   const auto eps = noise.defined() ? noise.to(q.mean.device()) : torch::randn_like(q.mean);
   TORCH_CHECK(eps.sizes() == q.mean.sizes(), "TrajectoryVae::loss: noise must be [B, Z]");
   const auto z = reparameterize(q.mean, q.log_std, eps);

@@ -92,6 +92,10 @@ class TrajectoryVaeImpl : public torch::nn::Module {
   // The k_j (CPU, int64; not a buffer, so that checkpoints keep their layout); undefined
   // without offsets.
   torch::Tensor offset_index_;
+  // What the encoder reads of normalised states x [B, S, D]: the encoder_state_indices
+  // components (all without), plus encoder_input_noise when add_noise, zero on padding.
+  torch::Tensor encoder_input(const torch::Tensor& x, const torch::Tensor& state_mask, bool add_noise) const;
+  torch::Tensor encoder_index_;  // the encoder_state_indices as offset_index_; undefined: all
 };
 TORCH_MODULE(TrajectoryVae);
 

@@ -83,6 +83,26 @@ TEST_F(TrajectoryVaeTest, EncoderInputNoiseReachesOnlyTheEncoderAndOnlyInTrainin
   EXPECT_GT(std::abs(clean.kl.item<double>() - noisy.kl.item<double>()), 1e-4);
 }
 
+TEST_F(TrajectoryVaeTest, TheEncoderReadsOnlyItsStateIndices) {
+  auto c = tiny_vae_config();
+  c.encoder_state_indices = {3, 1};
+  TrajectoryVae vae(c);
+  const auto [states, actions] = testing::toy_trajectories(2, 6, 4, 2, 4);
+  vae->fit_normalization(states, actions);
+  const auto q = vae->encode(states);
+  auto other = states.clone();
+  other.select(2, 0).add_(5.0);
+  other.select(2, 2).mul_(-3.0);
+  EXPECT_TRUE(torch::allclose(vae->encode(other).mean, q.mean));
+  auto moved = states.clone();
+  moved.select(2, 3).add_(1.0);
+  EXPECT_FALSE(torch::allclose(vae->encode(moved).mean, q.mean));
+  const auto x = vae->normalize_states(states);
+  const auto direct = vae->encoder()->forward(torch::stack({x.select(2, 3), x.select(2, 1)}, 2));
+  EXPECT_TRUE(torch::allclose(direct.mean, q.mean));
+  EXPECT_TRUE(std::isfinite(vae->loss(states, actions).total.item<double>()));
+}
+
 TEST_F(TrajectoryVaeTest, ActionsRelativeToTheStateAreModelledAsTheirDifference) {
   auto c = tiny_vae_config();
   c.action_relative_to_state = {2, 0};

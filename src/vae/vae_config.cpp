@@ -66,6 +66,8 @@ void VaeConfig::validate() const {
   require(kl_weight >= 0, "kl_weight must be >= 0");
   require(weight_decay >= 0, "weight_decay must be >= 0");
   require(encoder_input_noise >= 0, "encoder_input_noise must be >= 0");
+  for (int k : encoder_state_indices)
+    require(k >= 0 && k < state_dim, "encoder_state_indices must lie in [0, state_dim)");
   require(action_relative_to_state.empty() ||
               static_cast<int>(action_relative_to_state.size()) == action_dim,
           "action_relative_to_state must be empty or have action_dim entries");
@@ -86,6 +88,7 @@ std::string VaeConfig::to_json() const {
             {"position_embedding", position_embedding},
             {"action_relative_to_state", action_relative_to_state},
             {"action_std_depends_on_state", action_std_depends_on_state},
+            {"encoder_state_indices", encoder_state_indices},
             {"learning_rate", learning_rate},
             {"batch_size", batch_size},
             {"kl_weight", kl_weight},
@@ -120,6 +123,8 @@ VaeConfig VaeConfig::from_json(const std::string& text, const VaeConfig& default
         c.action_relative_to_state = it->get<std::vector<int>>();
       else if (key == "action_std_depends_on_state")
         c.action_std_depends_on_state = it->get<bool>();
+      else if (key == "encoder_state_indices")
+        c.encoder_state_indices = it->get<std::vector<int>>();
       else if (key == "learning_rate") c.learning_rate = it->get<double>();
       else if (key == "batch_size") c.batch_size = it->get<int>();
       else if (key == "kl_weight") c.kl_weight = it->get<double>();
@@ -155,7 +160,8 @@ bool VaeConfig::operator==(const VaeConfig& o) const {
          wavenet_layers == o.wavenet_layers && mixture_components == o.mixture_components &&
          position_embedding == o.position_embedding &&
          action_relative_to_state == o.action_relative_to_state &&
-         action_std_depends_on_state == o.action_std_depends_on_state && learning_rate == o.learning_rate &&
+         action_std_depends_on_state == o.action_std_depends_on_state &&
+         encoder_state_indices == o.encoder_state_indices && learning_rate == o.learning_rate &&
          batch_size == o.batch_size && kl_weight == o.kl_weight && weight_decay == o.weight_decay &&
          encoder_input_noise == o.encoder_input_noise;
 }

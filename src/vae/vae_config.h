@@ -38,6 +38,11 @@ struct VaeConfig {
   // home state for every target): a large std there makes their error cheap, and the decoder
   // never learns to read z. A shared std weighs every step's error alike.
   bool action_std_depends_on_state = true;
+  // Not in the paper, which encodes whole states. Empty, or the state components the encoder
+  // reads (the decoders always see the whole state). The arm's grip position says where a
+  // reach ends; its joint angles and velocities also carry each expert's idiosyncratic path,
+  // which tells 50 training experts apart without saying anything about an unseen one.
+  std::vector<int> encoder_state_indices;
 
   // Training. The paper gives no VAE optimiser settings; these are Adam's usual ones.
   double learning_rate = 1e-4;

@@ -49,6 +49,7 @@ TEST(VaeConfigTest, JsonRoundTrip) {
   c.action_std_depends_on_state = false;
   c.weight_decay = 1e-5;
   c.encoder_input_noise = 0.3;
+  c.encoder_state_indices = {0, 5, 129};
   EXPECT_EQ(VaeConfig::from_json(c.to_json()), c);
 }
 
@@ -59,6 +60,8 @@ TEST(VaeConfigTest, ActionOffsetsNeedOneStateIndexPerAction) {
                std::invalid_argument);
   EXPECT_THROW(VaeConfig::from_json(R"({"action_relative_to_state": [0,1,2,3,4,5,6,7,21]})", arm),
                std::invalid_argument);
+  EXPECT_NO_THROW(VaeConfig::from_json(R"({"encoder_state_indices": [18, 19, 20]})", arm));
+  EXPECT_THROW(VaeConfig::from_json(R"({"encoder_state_indices": [18, 21]})", arm), std::invalid_argument);
 }
 
 TEST(VaeConfigTest, MissingKeysKeepDefaultsUnknownKeysThrow) {
