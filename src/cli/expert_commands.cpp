@@ -243,6 +243,7 @@ struct CollectFlags {
   std::vector<std::string> dirs = {"experts/walker"};
   int episodes = 0;  // 0: the task's paper value (walker 20, arm 30)
   double noise = ArmCollectOptions{}.noise_std;
+  double offset = 0;
   std::vector<std::string> only;
   std::string out;
   std::vector<std::string> held_out;
@@ -272,6 +273,7 @@ void run_collect(CollectFlags f) {
     if (episodes > 0) o.episodes_per_expert = episodes;
     episodes = o.episodes_per_expert;
     o.noise_std = f.noise;
+    o.offset_std = f.offset;
     o.seed = f.collect.seed;
     o.held_out = f.held_out;
     Progress progress("collect", static_cast<std::int64_t>(dirs.size()) * episodes, "episodes");
@@ -336,6 +338,8 @@ void add_expert_commands(CLI::App& app) {
       ->check(CLI::Range(1, 100000));
   collect->add_flag("--stochastic", c->collect.stochastic, "walker: sample actions (default: mean actions)");
   collect->add_option("--noise", c->noise, "arm: std (rad) of the Gaussian noise on the executed joint commands (the demonstration records the expert's own)")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  collect->add_option("--offset", c->offset, "arm: std (rad) of a per-episode constant offset on every joint command, recorded in the demonstration (0: none)")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   collect->add_option("--held-out", c->held_out, "expert ids marked held_out = 1 (kept out of VAE training)");
   collect->add_option("--seed", c->collect.seed, "episode seeds")->capture_default_str();

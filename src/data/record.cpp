@@ -145,4 +145,26 @@ BatchPolicy zero_policy(const Env& env) {
   };
 }
 
+BatchPolicy with_episode_offset(BatchPolicy policy, const BoxSpec& box, double std, std::uint64_t seed) {
+  // Each episode's offset is the first draw of its own stream, kept until the episode ends.
+  auto offsets = std::make_shared<std::map<int, std::vector<double>>>();
+  return [policy = std::move(policy), box, std, seed, offsets](int n, const float* observations,
+                                                               const int* episodes, const int* steps,
+                                                               float* actions) {
+    policy(n, observations, episodes, steps, actions);
+    const int act_dim = box.dim();
+    for (int b = 0; b < n; ++b) {
+      auto [it, drawn] = offsets->try_emplace(episodes[b]);
+      if (drawn) {
+        Rng rng(derive_seed(seed, static_cast<std::uint64_t>(episodes[b])));
+        for (int a = 0; a < act_dim; ++a) it->second.push_back(std * rng.normal());
+      }
+      for (int a = 0; a < act_dim; ++a) {
+        float& u = actions[static_cast<size_t>(b) * act_dim + a];
+        u = static_cast<float>(std::clamp(u + it->second[a], box.low[a], box.high[a]));
+      }
+    }
+  };
+}
+
 }  // namespace vaegail

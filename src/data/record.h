@@ -46,4 +46,11 @@ std::vector<Episode> record_episodes(const Env& prototype, const RecordRequest& 
 BatchPolicy random_policy(const Env& env, std::uint64_t seed);
 BatchPolicy zero_policy(const Env& env);
 
+// The policy's actions plus an offset that is constant over an episode and drawn per episode
+// and per component from N(0, std^2) (stream seeded by (seed, episode)), clipped to the box: a
+// family of demonstrators around one policy, each of which ends its episodes somewhere else.
+// Unlike execution noise, the offset is part of the recorded action, and a whole trajectory
+// shows it.
+BatchPolicy with_episode_offset(BatchPolicy policy, const BoxSpec& box, double std, std::uint64_t seed);
+
 }  // namespace vaegail

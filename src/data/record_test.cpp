@@ -1,5 +1,7 @@
 #include "data/record.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "env/walker.h"
@@ -63,6 +65,25 @@ TEST(Record, ExecutionNoiseMovesTheStatesButNotTheRecordedActions) {
     EXPECT_NE(a[i].observations, clean[i].observations);                   // the execution was not
     EXPECT_EQ(a[i].observations, b[i].observations);                       // noise per episode
   }
+}
+
+TEST(Record, AnEpisodeOffsetIsConstantWithinAnEpisodeAndRecorded) {
+  WalkerEnv env;
+  const BoxSpec box = env.action_spec();
+  const int act_dim = box.dim(), episodes = 40;
+  const auto a = record_episodes(env, request(episodes, 1, 1), with_episode_offset(zero_policy(env), box, 0.1, 4));
+  const auto b = record_episodes(env, request(episodes, 7, 2), with_episode_offset(zero_policy(env), box, 0.1, 4));
+  double sum_sq = 0;
+  for (int i = 0; i < episodes; ++i) {
+    const std::vector<float> first(a[i].actions.begin(), a[i].actions.begin() + act_dim);
+    for (int t = 1; t < a[i].length(); ++t)
+      EXPECT_EQ(std::vector<float>(a[i].actions.begin() + t * act_dim, a[i].actions.begin() + (t + 1) * act_dim), first);
+    EXPECT_EQ(a[i].actions, b[i].actions);  // drawn per episode, not per batch
+    if (i > 0) EXPECT_NE(std::vector<float>(a[i - 1].actions.begin(), a[i - 1].actions.begin() + act_dim), first);
+    for (float u : first) sum_sq += u * u;
+  }
+  // 240 draws of N(0, 0.1^2): the sample std lies within 0.1 +- 0.015 (about 3 standard errors).
+  EXPECT_NEAR(std::sqrt(sum_sq / (episodes * act_dim)), 0.1, 0.015);
 }
 
 }  // namespace

@@ -206,7 +206,10 @@ void collect_arm_demos(const std::vector<std::string>& expert_dirs, const std::s
     request.execution_noise_std = o.noise_std;
     request.execution_noise_seed = derive_seed(o.seed, 1000 + x);
     const bool held_out = std::count(o.held_out.begin(), o.held_out.end(), expert.spec.id) > 0;
-    auto episodes = record_episodes(prototype, request, arm_expert_policy(expert.ddpg, prototype.action_spec()), progress);
+    BatchPolicy policy = arm_expert_policy(expert.ddpg, prototype.action_spec());
+    if (o.offset_std > 0)
+      policy = with_episode_offset(std::move(policy), prototype.action_spec(), o.offset_std, derive_seed(o.seed, 2000 + x));
+    auto episodes = record_episodes(prototype, request, policy, progress);
     for (auto& e : episodes) {
       e.attributes["held_out"] = held_out ? 1.0 : 0.0;
       const int n_features = static_cast<int>(prototype.feature_names().size());

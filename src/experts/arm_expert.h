@@ -76,6 +76,11 @@ struct ArmCollectOptions {
   // actor's own command: a deterministic actor from a fixed start would demonstrate one
   // trajectory 30 times, and a label carrying the noise would ask the VAE to predict it.
   double noise_std = 0.05;
+  // When above 0, each demonstration's commands carry a constant offset (rad, per joint, drawn per
+  // episode; see with_episode_offset) that the demonstration records: 30 episodes of one expert
+  // then end at 30 different points around its target instead of one, so a VAE sees the whole
+  // neighbourhood of every target rather than 50 isolated points.
+  double offset_std = 0;
   std::uint64_t seed = 0;
   int num_envs = 10;
   std::vector<std::string> held_out;  // expert ids (the paper: the last 10 of 60)
