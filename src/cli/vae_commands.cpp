@@ -86,6 +86,7 @@ struct TrainFlags {
   int batch_size = 0;
   double lr = 0;
   std::uint64_t seed = 0;
+  bool keep_epochs = false;
 };
 
 // The run directory's own config when resuming, else the preset; then --config; then flags.
@@ -114,6 +115,7 @@ void run_train(const TrainFlags& f) {
   options.epochs = f.epochs;
   options.seed = f.seed;
   options.device = parse_device(f.device);
+  options.keep_epochs = f.keep_epochs;
   vae::VaeTrainer trainer(config, options, data.train, data.val);
   if (trainer.epoch() > 0) std::printf("resuming %s after epoch %d\n", f.run_dir.c_str(), trainer.epoch());
   while (trainer.epoch() < f.epochs) {
@@ -138,6 +140,7 @@ void add_train(CLI::App& vae) {
   c->add_option("--batch-size", f->batch_size, "trajectories per step (default: the config's, 32)")->check(CLI::Range(1, 1 << 20));
   c->add_option("--lr", f->lr, "Adam learning rate (default: the config's, 1e-4)")->check(CLI::PositiveNumber);
   c->add_option("--seed", f->seed, "initialisation, shuffling, noise and the validation split")->capture_default_str();
+  c->add_flag("--keep-epochs", f->keep_epochs, "also keep every epoch's checkpoint as checkpoints/epoch_N.pt");
   add_device_option(*c, f->device, kDeviceHelp);
   c->callback([f] { run_train(*f); });
 }

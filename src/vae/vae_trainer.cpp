@@ -116,6 +116,12 @@ std::string VaeTrainer::checkpoint_path() const {
   return (std::filesystem::path(options_.run_dir) / "checkpoints" / "latest.pt").string();
 }
 
+std::string VaeTrainer::epoch_checkpoint_path(int epoch) const {
+  return (std::filesystem::path(options_.run_dir) / "checkpoints" /
+          ("epoch_" + std::to_string(epoch) + ".pt"))
+      .string();
+}
+
 std::string VaeTrainer::metrics_path() const {
   return (std::filesystem::path(options_.run_dir) / "metrics.csv").string();
 }
@@ -180,6 +186,7 @@ EpochMetrics VaeTrainer::train_epoch() {
   log.write({static_cast<double>(e), m.train.total, m.train.action_nll, m.train.state_nll,
              m.train.kl, m.val.total, m.val.action_nll, m.val.state_nll, m.val.kl, m.seconds});
   save_checkpoint(checkpoint_path());
+  if (options_.keep_epochs) save_checkpoint(epoch_checkpoint_path(e));
   return m;
 }
 

@@ -5,6 +5,7 @@
 //   run_dir/config.json                 the VaeConfig
 //   run_dir/metrics.csv                 one row per epoch: every loss term, train and val
 //   run_dir/checkpoints/latest.pt       model + optimizer + epoch + seed, written atomically
+//   run_dir/checkpoints/epoch_{e}.pt    the same after every epoch e, with keep_epochs
 //
 // Reproducibility: every random stream is derived from (seed, epoch, batch) with
 // util/rng.h's derive_seed: the weight initialisation, the epoch's shuffle and each batch's
@@ -42,6 +43,9 @@ struct TrainerOptions {
   torch::Device device = torch::kCPU;
   bool progress = true;       // a progress bar on stderr
   int eval_batch_size = 64;   // batch size of validation passes
+  // Also keep every epoch's checkpoint: an epoch is chosen after the run, by a criterion the
+  // validation loss does not measure (imitation in the environment, an embedding test).
+  bool keep_epochs = false;
 };
 
 // Batch-mean loss terms of a pass over a dataset, weighted by batch size.
@@ -72,6 +76,7 @@ class VaeTrainer {
   void save_checkpoint(const std::string& path);
   void load_checkpoint(const std::string& path);
   std::string checkpoint_path() const;
+  std::string epoch_checkpoint_path(int epoch) const;
   std::string metrics_path() const;
 
   int epoch() const { return epoch_; }  // epochs completed

@@ -91,6 +91,22 @@ TEST_F(VaeTrainerTest, WritesMetricsConfigAndCheckpoint) {
     EXPECT_EQ(entry.path().filename(), "latest.pt") << "left behind: " << entry.path();
 }
 
+TEST_F(VaeTrainerTest, KeepEpochsLeavesEachEpochsCheckpointLoadableAndDistinct) {
+  auto o = options("run", 2);
+  o.keep_epochs = true;
+  VaeTrainer trainer(tiny_config(), o, toy_dataset(7, 1, true), {});
+  trainer.train();
+  const auto x = trainer.model()->normalize_states(toy_dataset(1, 5, false).states);
+  const auto encode_with = [&](const std::string& path) {
+    return load_trained_vae(path)->encoder()->forward(x);
+  };
+  const auto first = encode_with(trainer.epoch_checkpoint_path(1));
+  const auto second = encode_with(trainer.epoch_checkpoint_path(2));
+  const auto latest = encode_with(trainer.checkpoint_path());
+  EXPECT_TRUE(torch::equal(second.mean, latest.mean));
+  EXPECT_FALSE(torch::allclose(first.mean, second.mean));
+}
+
 TEST_F(VaeTrainerTest, TrainingReducesTheLoss) {
   VaeTrainer trainer(tiny_config(), options("run", 15), toy_dataset(9, 3, false), {});
   const auto metrics = trainer.train();
