@@ -11,8 +11,8 @@ v=build/vaegail
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "epoch,correct,total,per_target" > "$tmp/out.csv"
-for ckpt in $(ls "$run"/checkpoints/epoch_*.pt | sort -t_ -k2 -n); do
-  e=$(basename "$ckpt" .pt); e=${e#epoch_}
+for e in $(ls "$run"/checkpoints/epoch_*.pt | sed 's/.*epoch_//; s/\.pt$//' | sort -n); do
+  ckpt=$run/checkpoints/epoch_$e.pt
   $v --torch-threads 1 vae embed --checkpoint "$ckpt" --demos "$demos" --out "$tmp/emb.csv" > /dev/null 2>&1
   # "k-NN ...: 59 / 60 = 98.3% ..." then "  target -1: 20 / 20 = 100.0%" per target
   $v vae knn --embeddings "$tmp/emb.csv" --k 5 | awk -v e="$e" '
