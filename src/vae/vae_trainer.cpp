@@ -112,14 +112,14 @@ VaeTrainer::VaeTrainer(const VaeConfig& config, TrainerOptions options, Trajecto
   config_.save((std::filesystem::path(options_.run_dir) / "config.json").string());
 }
 
-std::string VaeTrainer::checkpoint_path() const {
-  return (std::filesystem::path(options_.run_dir) / "checkpoints" / "latest.pt").string();
-}
+std::string VaeTrainer::checkpoint_path() const { return checkpoint_file("latest.pt"); }
 
 std::string VaeTrainer::epoch_checkpoint_path(int epoch) const {
-  return (std::filesystem::path(options_.run_dir) / "checkpoints" /
-          ("epoch_" + std::to_string(epoch) + ".pt"))
-      .string();
+  return checkpoint_file("epoch_" + std::to_string(epoch) + ".pt");
+}
+
+std::string VaeTrainer::checkpoint_file(const std::string& name) const {
+  return (std::filesystem::path(options_.run_dir) / "checkpoints" / name).string();
 }
 
 std::string VaeTrainer::metrics_path() const {

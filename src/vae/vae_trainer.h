@@ -90,6 +90,8 @@ class VaeTrainer {
   TrajectoryVae model_{nullptr};
   std::unique_ptr<torch::optim::Adam> optimizer_;
   int epoch_ = 0;
+
+  std::string checkpoint_file(const std::string& name) const;  // run_dir/checkpoints/name
 };
 
 // (mu, sigma) [M, Z] of q(z | states) for every trajectory, in batches, without gradient,
