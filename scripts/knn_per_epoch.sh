@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# The held-out 5-NN vote of every epoch of a VAE run trained with `vae train --keep-epochs`.
+# The held-out 5-NN vote of every epoch of a VAE run trained with `vae train --keep-epochs`,
+# and the same vote with each training expert left out in turn (`vae knn --leave-one-expert-out`).
 # Usage: scripts/knn_per_epoch.sh RUN_DIR DEMOS.h5 OUT.csv   (about 30 s an epoch for the walker)
-# OUT.csv: epoch, then the vote's correct / total for all held-out episodes and per target.
+# OUT.csv: epoch, the held-out vote's correct / total and per target, then the leave-one-expert-out
+# vote's correct / total and the training experts with most of their episodes correct / all.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -eq 3 ] || { echo "usage: $0 RUN_DIR DEMOS.h5 OUT.csv" >&2; exit 2; }
@@ -10,14 +12,20 @@ ls "$run"/checkpoints/epoch_*.pt > /dev/null 2>&1 || { echo "$run: no epoch_N.pt
 v=build/vaegail
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "epoch,correct,total,per_target" > "$tmp/out.csv"
+echo "epoch,correct,total,per_target,loo_correct,loo_total,loo_experts_correct,loo_experts" > "$tmp/out.csv"
+# "k-NN ...: 59 / 60 = 98.3% ...", "  target -1: 20 / 20 = 100.0%" per target, then
+# "  experts with most of their rows correct: 3 / 3"; awk prints correct,total,per_target,experts_correct,experts
+summary='
+  /^k-NN/ { split($0, a, ": "); split(a[2], b, " "); c = b[1]; t = b[3] }
+  /target/ { sub(/^ +/, ""); p = p (p ? "; " : "") $1 " " $2 " " $3 "/" $5 }
+  /experts with/ { n = split($0, a, " "); x = a[n - 2]; y = a[n] }
+  END { printf "%s,%s,%s,%s,%s\n", c, t, p, x, y }'
+
 for e in $(ls "$run"/checkpoints/epoch_*.pt | sed 's/.*epoch_//; s/\.pt$//' | sort -n); do
   ckpt=$run/checkpoints/epoch_$e.pt
   $v --torch-threads 1 vae embed --checkpoint "$ckpt" --demos "$demos" --out "$tmp/emb.csv" > /dev/null 2>&1
-  # "k-NN ...: 59 / 60 = 98.3% ..." then "  target -1: 20 / 20 = 100.0%" per target
-  $v vae knn --embeddings "$tmp/emb.csv" --k 5 | awk -v e="$e" '
-    /^k-NN/ { split($0, a, ": "); split(a[2], b, " "); c = b[1]; t = b[3] }
-    /target/ { sub(/^ +/, ""); p = p (p ? "; " : "") $1 " " $2 " " $3 "/" $5 }
-    END { printf "%s,%s,%s,%s\n", e, c, t, p }' | tee -a "$tmp/out.csv"
+  IFS=, read -r c t p _ _ < <($v vae knn --embeddings "$tmp/emb.csv" --k 5 | awk "$summary")
+  IFS=, read -r lc lt _ lx ly < <($v vae knn --embeddings "$tmp/emb.csv" --k 5 --leave-one-expert-out | awk "$summary")
+  echo "$e,$c,$t,$p,$lc,$lt,$lx,$ly" | tee -a "$tmp/out.csv"
 done
 mv "$tmp/out.csv" "$out"

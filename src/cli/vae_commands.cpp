@@ -85,6 +85,7 @@ struct TrainFlags {
   int epochs = 100;
   int batch_size = 0;
   double lr = 0;
+  int lr_decay_epochs = -1;
   std::uint64_t seed = 0;
   bool keep_epochs = false;
 };
@@ -97,6 +98,7 @@ vae::VaeConfig train_config(const TrainFlags& f, const DemoHeader& header) {
   if (!f.config.empty()) c = vae::VaeConfig::load(f.config, c);
   if (f.batch_size > 0) c.batch_size = f.batch_size;
   if (f.lr > 0) c.learning_rate = f.lr;
+  if (f.lr_decay_epochs >= 0) c.lr_decay_epochs = f.lr_decay_epochs;
   c.validate();
   return c;
 }
@@ -139,6 +141,9 @@ void add_train(CLI::App& vae) {
   c->add_option("--epochs", f->epochs, "train until this many epochs in total")->check(CLI::Range(1, 1 << 30))->capture_default_str();
   c->add_option("--batch-size", f->batch_size, "trajectories per step (default: the config's, 32)")->check(CLI::Range(1, 1 << 20));
   c->add_option("--lr", f->lr, "Adam learning rate (default: the config's, 1e-4)")->check(CLI::PositiveNumber);
+  c->add_option("--lr-decay-epochs", f->lr_decay_epochs,
+                 "cosine decay of the learning rate to 0 over this many epochs (0: constant; default: the config's)")
+      ->check(CLI::Range(0, 1 << 30));
   c->add_option("--seed", f->seed, "initialisation, shuffling, noise and the validation split")->capture_default_str();
   c->add_flag("--keep-epochs", f->keep_epochs, "also keep every epoch's checkpoint as checkpoints/epoch_N.pt");
   add_device_option(*c, f->device, kDeviceHelp);
@@ -180,12 +185,16 @@ void add_embed(CLI::App& vae) {
 void add_knn(CLI::App& vae) {
   auto path = std::make_shared<std::string>();
   auto k = std::make_shared<int>(5);
+  auto leave_one_out = std::make_shared<bool>(false);
   CLI::App* c = vae.add_subcommand("knn", "classify held-out embeddings by a k-NN vote of the training ones' target");
   c->add_option("--embeddings", *path, "CSV from `vaegail vae embed`")->required();
   c->add_option("--k", *k, "neighbours")->check(CLI::Range(1, 1 << 20))->capture_default_str();
-  c->callback([path, k] {
+  c->add_flag("--leave-one-expert-out", *leave_one_out,
+              "instead classify every training expert's embeddings against the other training experts'");
+  c->callback([path, k, leave_one_out] {
     const auto rows = vae::parse_embedding_csv(read_file(*path), *path);
-    std::fputs(vae::format_knn(vae::knn_classify(rows, *k)).c_str(), stdout);
+    const auto result = *leave_one_out ? vae::knn_classify_leave_one_expert_out(rows, *k) : vae::knn_classify(rows, *k);
+    std::fputs(vae::format_knn(result).c_str(), stdout);
   });
 }
 

@@ -90,52 +90,96 @@ std::vector<EmbeddingRow> parse_embedding_csv(const std::string& text, const std
   return rows;
 }
 
-KnnResult knn_classify(const std::vector<EmbeddingRow>& rows, int k) {
+namespace {
+
+// The context most common among the k rows of `pool` nearest to `query` (Euclidean on mu);
+// a tied vote goes to the tied context with the nearest member.
+double vote(const EmbeddingRow& query, const std::vector<const EmbeddingRow*>& pool, int k) {
+  std::vector<std::pair<double, const EmbeddingRow*>> by_distance;
+  for (const auto* t : pool) by_distance.push_back({squared_distance(query.mu, t->mu), t});
+  k = std::min<int>(k, static_cast<int>(by_distance.size()));
+  std::partial_sort(by_distance.begin(), by_distance.begin() + k, by_distance.end(),
+                    [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::map<double, int> votes;
+  for (int i = 0; i < k; ++i) ++votes[by_distance[i].second->context];
+  int best_votes = 0;
+  for (const auto& [context, n] : votes) best_votes = std::max(best_votes, n);
+  for (int i = 0; i < k; ++i)  // nearest first: the first tied winner met wins
+    if (votes[by_distance[i].second->context] == best_votes) return by_distance[i].second->context;
+  return 0;  // unreachable: k >= 1 and the pool is not empty
+}
+
+// Classifies each query against pool_for(query), tallying per target and per expert.
+template <typename PoolFor>
+KnnResult tally(const std::vector<const EmbeddingRow*>& queries, int k, PoolFor pool_for) {
   if (k < 1) throw std::invalid_argument("knn: k must be >= 1");
-  std::vector<const EmbeddingRow*> train, queries;
-  for (const auto& r : rows) (r.held_out ? queries : train).push_back(&r);
-  if (train.empty()) throw std::invalid_argument("knn: no training rows (held_out = 0)");
-  if (queries.empty()) throw std::invalid_argument("knn: no held-out rows (held_out = 1) to classify");
   KnnResult result;
-  result.k = std::min<int>(k, static_cast<int>(train.size()));
+  result.k = k;
+  std::map<std::string, std::pair<int, int>> per_expert;  // (correct, total)
   for (const auto* q : queries) {
-    std::vector<std::pair<double, const EmbeddingRow*>> by_distance;
-    for (const auto* t : train) by_distance.push_back({squared_distance(q->mu, t->mu), t});
-    std::partial_sort(by_distance.begin(), by_distance.begin() + result.k, by_distance.end(),
-                      [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::map<double, int> votes;
-    for (int i = 0; i < result.k; ++i) ++votes[by_distance[i].second->context];
-    int best_votes = 0;
-    for (const auto& [context, n] : votes) best_votes = std::max(best_votes, n);
-    double predicted = 0;
-    for (int i = 0; i < result.k; ++i) {  // nearest first: the first tied winner met wins
-      const double c = by_distance[i].second->context;
-      if (votes[c] == best_votes) {
-        predicted = c;
-        break;
-      }
-    }
-    const bool hit = predicted == q->context;
+    const auto& pool = pool_for(*q);
+    result.k = std::min<int>(k, static_cast<int>(pool.size()));
+    const bool hit = vote(*q, pool, k) == q->context;
     result.total += 1;
     result.correct += hit;
     auto& target = result.per_target[q->context];
     target.first += hit;
     target.second += 1;
+    auto& expert = per_expert[q->expert_id];
+    expert.first += hit;
+    expert.second += 1;
   }
+  result.experts = static_cast<int>(per_expert.size());
+  for (const auto& [id, ct] : per_expert) result.experts_majority_correct += 2 * ct.first > ct.second;
+  return result;
+}
+
+std::vector<const EmbeddingRow*> training_rows(const std::vector<EmbeddingRow>& rows) {
+  std::vector<const EmbeddingRow*> train;
+  for (const auto& r : rows)
+    if (!r.held_out) train.push_back(&r);
+  if (train.empty()) throw std::invalid_argument("knn: no training rows (held_out = 0)");
+  return train;
+}
+
+}  // namespace
+
+KnnResult knn_classify(const std::vector<EmbeddingRow>& rows, int k) {
+  const auto train = training_rows(rows);
+  std::vector<const EmbeddingRow*> queries;
+  for (const auto& r : rows)
+    if (r.held_out) queries.push_back(&r);
+  if (queries.empty()) throw std::invalid_argument("knn: no held-out rows (held_out = 1) to classify");
+  return tally(queries, k, [&](const EmbeddingRow&) -> const auto& { return train; });
+}
+
+KnnResult knn_classify_leave_one_expert_out(const std::vector<EmbeddingRow>& rows, int k) {
+  const auto train = training_rows(rows);
+  std::map<std::string, std::vector<const EmbeddingRow*>> others;  // expert -> the rest
+  for (const auto* r : train) others[r->expert_id];
+  if (others.size() < 2) throw std::invalid_argument("knn: leaving one expert out needs two training experts");
+  for (auto& [id, pool] : others)
+    for (const auto* r : train)
+      if (r->expert_id != id) pool.push_back(r);
+  auto result = tally(train, k, [&](const EmbeddingRow& q) -> const auto& { return others.at(q.expert_id); });
+  result.leave_one_expert_out = true;
   return result;
 }
 
 std::string format_knn(const KnnResult& r) {
   char buf[160];
-  std::snprintf(buf, sizeof buf, "k-NN (k = %d) on held-out embeddings: %d / %d = %.1f%%  (bar: >= 90%%)\n",
-                r.k, r.correct, r.total, 100.0 * r.accuracy());
+  std::snprintf(buf, sizeof buf, "k-NN (k = %d) on %s: %d / %d = %.1f%%%s\n", r.k,
+                r.leave_one_expert_out ? "training embeddings, each expert left out in turn" : "held-out embeddings",
+                r.correct, r.total, 100.0 * r.accuracy(), r.leave_one_expert_out ? "" : "  (bar: >= 90%)");
   std::string out = buf;
   for (const auto& [context, ct] : r.per_target) {
     std::snprintf(buf, sizeof buf, "  target %+g: %d / %d = %.1f%%\n", context, ct.first, ct.second,
                   100.0 * ct.first / ct.second);
     out += buf;
   }
-  return out;
+  std::snprintf(buf, sizeof buf, "  experts with most of their rows correct: %d / %d\n", r.experts_majority_correct,
+                r.experts);
+  return out + buf;
 }
 
 }  // namespace vaegail::vae

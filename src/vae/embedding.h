@@ -29,9 +29,12 @@ std::string embedding_csv(const std::vector<EmbeddingRow>& rows);
 std::vector<EmbeddingRow> parse_embedding_csv(const std::string& text, const std::string& where);
 
 struct KnnResult {
+  bool leave_one_expert_out = false;  // false: the held-out rows against the training rows
   int k = 0;
   int total = 0, correct = 0;
   std::map<double, std::pair<int, int>> per_target;  // context -> (correct, total)
+  // Experts whose rows were classified, and those with more than half of them correct.
+  int experts = 0, experts_majority_correct = 0;
   double accuracy() const { return total ? static_cast<double>(correct) / total : 0.0; }
 };
 
@@ -39,6 +42,11 @@ struct KnnResult {
 // (Euclidean on mu); a tied vote goes to the tied context with the nearest member.
 // Throws std::invalid_argument without training or held-out rows.
 KnnResult knn_classify(const std::vector<EmbeddingRow>& rows, int k);
+// The same vote for every training row against the training rows of the other experts (by
+// expert_id): each training expert in turn plays the unseen one. With a few held-out experts
+// the held-out vote has a few outcomes that matter; this one has one per training expert.
+// Throws std::invalid_argument with fewer than two training experts.
+KnnResult knn_classify_leave_one_expert_out(const std::vector<EmbeddingRow>& rows, int k);
 std::string format_knn(const KnnResult& result);
 
 }  // namespace vaegail::vae

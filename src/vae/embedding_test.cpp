@@ -94,5 +94,31 @@ TEST(EmbeddingTest, KnnVotesAndBreaksTiesByTheNearest) {
   EXPECT_THROW(knn_classify(rows, 3), std::invalid_argument);  // nothing held out
 }
 
+TEST(EmbeddingTest, LeaveOneExpertOutVotesWithoutTheExpertsOwnRows) {
+  // Expert a (target 1) sits next to expert b (target 2) and far from c and d (target 1):
+  // with its own rows in the pool a would be right; without them its nearest are b's.
+  auto at = [](const std::string& expert, double context, double x) {
+    EmbeddingRow r = row(0, context, false, {x});
+    r.expert_id = expert;
+    return r;
+  };
+  const std::vector<EmbeddingRow> rows{at("a", 1, 0.0),  at("a", 1, 0.1),  at("b", 2, 0.2),
+                                       at("b", 2, 0.3),  at("c", 1, 10.0), at("d", 1, 10.1)};
+  const auto result = knn_classify_leave_one_expert_out(rows, 1);
+  EXPECT_EQ(result.total, 6);
+  EXPECT_EQ(result.correct, 2);  // a's two rows go to b, b's to a; c and d find each other
+  EXPECT_EQ(result.experts, 4);
+  EXPECT_EQ(result.experts_majority_correct, 2);
+  EXPECT_EQ(result.per_target.at(2.0), (std::pair<int, int>{0, 2}));
+  EXPECT_NE(format_knn(result).find("each expert left out"), std::string::npos);
+  EXPECT_THROW(knn_classify_leave_one_expert_out({at("a", 1, 0), at("a", 1, 1)}, 1), std::invalid_argument);
+}
+
+TEST(EmbeddingTest, KnnCountsExpertsWithAMajorityCorrect) {
+  const auto result = knn_classify(synthetic(0.3, 1), 5);
+  EXPECT_EQ(result.experts, 4);  // row() names experts e0..e3
+  EXPECT_EQ(result.experts_majority_correct, 4);
+}
+
 }  // namespace
 }  // namespace vaegail::vae

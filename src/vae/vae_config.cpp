@@ -66,6 +66,7 @@ void VaeConfig::validate() const {
   require(kl_weight >= 0, "kl_weight must be >= 0");
   require(weight_decay >= 0, "weight_decay must be >= 0");
   require(encoder_input_noise >= 0, "encoder_input_noise must be >= 0");
+  require(lr_decay_epochs >= 0, "lr_decay_epochs must be >= 0");
   for (int k : encoder_state_indices)
     require(k >= 0 && k < state_dim, "encoder_state_indices must lie in [0, state_dim)");
   require(action_relative_to_state.empty() ||
@@ -93,7 +94,8 @@ std::string VaeConfig::to_json() const {
             {"batch_size", batch_size},
             {"kl_weight", kl_weight},
             {"weight_decay", weight_decay},
-            {"encoder_input_noise", encoder_input_noise}};
+            {"encoder_input_noise", encoder_input_noise},
+            {"lr_decay_epochs", lr_decay_epochs}};
   return j.dump(2) + "\n";
 }
 
@@ -130,6 +132,7 @@ VaeConfig VaeConfig::from_json(const std::string& text, const VaeConfig& default
       else if (key == "kl_weight") c.kl_weight = it->get<double>();
       else if (key == "weight_decay") c.weight_decay = it->get<double>();
       else if (key == "encoder_input_noise") c.encoder_input_noise = it->get<double>();
+      else if (key == "lr_decay_epochs") c.lr_decay_epochs = it->get<int>();
       else throw std::invalid_argument("VaeConfig: unknown key '" + key + "'");
     } catch (const json::exception& e) {
       throw std::invalid_argument("VaeConfig: bad value for '" + key + "': " + e.what());
@@ -163,7 +166,7 @@ bool VaeConfig::operator==(const VaeConfig& o) const {
          action_std_depends_on_state == o.action_std_depends_on_state &&
          encoder_state_indices == o.encoder_state_indices && learning_rate == o.learning_rate &&
          batch_size == o.batch_size && kl_weight == o.kl_weight && weight_decay == o.weight_decay &&
-         encoder_input_noise == o.encoder_input_noise;
+         encoder_input_noise == o.encoder_input_noise && lr_decay_epochs == o.lr_decay_epochs;
 }
 
 }  // namespace vaegail::vae

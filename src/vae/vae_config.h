@@ -57,6 +57,11 @@ struct VaeConfig {
   // comes to rest) rather than on small idiosyncrasies that tell 50 training experts apart
   // and say nothing about an unseen one.
   double encoder_input_noise = 0.0;
+  // Not in the paper. 0: a constant learning rate. E > 0: cosine decay from learning_rate at
+  // epoch 1 towards 0 after epoch E, so that a run's last epoch is a settled point rather than
+  // one draw of a noisy constant-rate walk (whose embedding and imitation scores jump from
+  // epoch to epoch), and "the last epoch", fixed before training, is a fair choice.
+  int lr_decay_epochs = 0;
 
   // The named presets of Table 1. state_dim / action_dim depend on the environment's
   // observation and action spaces; the walker's are this project's 18 and 6.

@@ -50,6 +50,7 @@ TEST(VaeConfigTest, JsonRoundTrip) {
   c.weight_decay = 1e-5;
   c.encoder_input_noise = 0.3;
   c.encoder_state_indices = {0, 5, 129};
+  c.lr_decay_epochs = 30;
   EXPECT_EQ(VaeConfig::from_json(c.to_json()), c);
 }
 

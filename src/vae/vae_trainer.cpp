@@ -65,6 +65,16 @@ LossTerms scaled(LossTerms t, double factor) {
 
 }  // namespace
 
+double scheduled_learning_rate(const VaeConfig& config, int epoch) {
+  if (epoch < 1) throw std::invalid_argument("scheduled_learning_rate: epochs count from 1");
+  const int E = config.lr_decay_epochs;
+  if (E == 0) return config.learning_rate;
+  if (epoch > E)
+    throw std::invalid_argument("scheduled_learning_rate: epoch " + std::to_string(epoch) +
+                                " is past lr_decay_epochs (" + std::to_string(E) + ")");
+  return config.learning_rate * 0.5 * (1.0 + std::cos(M_PI * (epoch - 1) / E));
+}
+
 TrajectoryDataset TrajectoryDataset::select(const torch::Tensor& index,
                                             const torch::Device& device) const {
   const auto i = index.to(states.device());
@@ -97,6 +107,11 @@ VaeTrainer::VaeTrainer(const VaeConfig& config, TrainerOptions options, Trajecto
   train_.validate(config_);
   if (train_.size() == 0) throw std::invalid_argument("VaeTrainer: empty training set");
   if (val_.size() > 0) val_.validate(config_);
+  if (config_.lr_decay_epochs > 0 && options_.epochs > config_.lr_decay_epochs)
+    throw std::invalid_argument("VaeTrainer: " + std::to_string(options_.epochs) +
+                                " epochs run past lr_decay_epochs (" +
+                                std::to_string(config_.lr_decay_epochs) +
+                                "), where the learning rate is 0");
 
   torch::manual_seed(stream_seed(options_.seed, kInit, 0));
   model_ = TrajectoryVae(config_);
@@ -151,6 +166,9 @@ EpochMetrics VaeTrainer::train_epoch() {
     progress = std::make_unique<Progress>(
         "vae epoch " + std::to_string(e) + "/" + std::to_string(options_.epochs), batches, "batch");
 
+  const double lr = scheduled_learning_rate(config_, e);
+  for (auto& group : optimizer_->param_groups())
+    static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
   model_->train();
   LossTerms sum;
   for (int64_t b = 0; b < batches; ++b) {

@@ -103,6 +103,11 @@ std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model,
                                                const TrajectoryDataset& data,
                                                int64_t batch_size = 64);
 
+// The learning rate of epoch `epoch` (1-based): config.learning_rate, or with lr_decay_epochs
+// E > 0 the cosine schedule lr * (1 + cos(pi * (epoch - 1) / E)) / 2, which starts at lr and
+// reaches 0 after epoch E. Throws std::invalid_argument for an epoch past E (it would not learn).
+double scheduled_learning_rate(const VaeConfig& config, int epoch);
+
 // Loads the model alone from a trainer checkpoint (config read from the checkpoint).
 TrajectoryVae load_trained_vae(const std::string& checkpoint_path,
                                const torch::Device& device = torch::kCPU);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -122,6 +123,39 @@ TEST_F(VaeTrainerTest, TheOptimiserTakesTheConfiguredLearningRateAndWeightDecay)
       trainer.optimizer().param_groups().front().options());
   EXPECT_DOUBLE_EQ(adam.weight_decay(), 1e-3);
   EXPECT_DOUBLE_EQ(adam.lr(), c.learning_rate);
+}
+
+TEST(ScheduledLearningRateTest, ConstantWithoutDecayCosineToZeroWithIt) {
+  auto c = tiny_config();
+  EXPECT_DOUBLE_EQ(scheduled_learning_rate(c, 1), c.learning_rate);
+  EXPECT_DOUBLE_EQ(scheduled_learning_rate(c, 1000), c.learning_rate);
+  c.lr_decay_epochs = 4;  // epochs 1..4 at cos(0), cos(pi/4), cos(pi/2), cos(3 pi/4)
+  EXPECT_DOUBLE_EQ(scheduled_learning_rate(c, 1), c.learning_rate);
+  EXPECT_NEAR(scheduled_learning_rate(c, 2), c.learning_rate * (1 + std::sqrt(0.5)) / 2, 1e-15);
+  EXPECT_NEAR(scheduled_learning_rate(c, 3), c.learning_rate / 2, 1e-15);
+  EXPECT_NEAR(scheduled_learning_rate(c, 4), c.learning_rate * (1 - std::sqrt(0.5)) / 2, 1e-15);
+  EXPECT_THROW(scheduled_learning_rate(c, 5), std::invalid_argument);
+  EXPECT_THROW(scheduled_learning_rate(c, 0), std::invalid_argument);
+}
+
+TEST_F(VaeTrainerTest, EachEpochRunsAtItsScheduledRateAndResumeKeepsTheSchedule) {
+  auto c = tiny_config();
+  c.lr_decay_epochs = 3;
+  const auto rate = [](VaeTrainer& t) {
+    return static_cast<const torch::optim::AdamOptions&>(t.optimizer().param_groups().front().options()).lr();
+  };
+  const auto train = toy_dataset(6, 4, false);
+  {
+    VaeTrainer first(c, options("run", 2), train, {});
+    first.train_epoch();
+    EXPECT_DOUBLE_EQ(rate(first), scheduled_learning_rate(c, 1));
+    first.train_epoch();
+    EXPECT_DOUBLE_EQ(rate(first), scheduled_learning_rate(c, 2));
+  }
+  VaeTrainer resumed(c, options("run", 3), train, {});
+  resumed.train();
+  EXPECT_DOUBLE_EQ(rate(resumed), scheduled_learning_rate(c, 3));
+  EXPECT_THROW(VaeTrainer(c, options("run", 4), train, {}), std::invalid_argument);
 }
 
 TEST_F(VaeTrainerTest, ResumeReproducesTheUninterruptedRun) {
