@@ -17,14 +17,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Smaller than testing::tiny_vae_config, and a fast learning rate: many short runs below.
 VaeConfig tiny_config() {
-  VaeConfig c = VaeConfig::walker(3, 2);
+  VaeConfig c = testing::tiny_vae_config(3, 2);
   c.lstm_hidden = 8;
-  c.latent_dim = 2;
   c.action_hidden = {16};
   c.wavenet_channels = 4;
-  c.wavenet_layers = 2;
-  c.mixture_components = 2;
   c.batch_size = 3;
   c.learning_rate = 3e-3;
   return c;
