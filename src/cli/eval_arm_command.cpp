@@ -99,7 +99,17 @@ std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pa
                 pairs.size(), pool.c_str(), tolerance, monotone, pairs.size(), 100.0 * monotone / std::max<size_t>(pairs.size(), 1),
                 100 * vae::median(off), 100 * eval::summarize_distances(off).p90, 100 * vae::median(off_relative),
                 vae::median(mid_along));
-  return text;
+  // The α steps of a short segment are no longer than the imitation error itself.
+  const std::vector<double> edges{0.2, 0.4};
+  const auto bins = eval::monotone_by_segment_length(pairs, tolerance, edges);
+  std::string by_length = "- monotone by segment length:";
+  const char* names[] = {"under 20 cm", "20 to 40 cm", "40 cm or more"};
+  for (size_t i = 0; i < bins.size(); ++i) {
+    char part[80];
+    std::snprintf(part, sizeof part, "%s %s %d of %d", i ? ";" : "", names[i], bins[i].first, bins[i].second);
+    by_length += part;
+  }
+  return text + by_length + "\n";
 }
 
 void run_eval_arm(const EvalArmFlags& f) {

@@ -106,6 +106,19 @@ bool InterpolationPair::monotone(double tolerance) const {
   return true;
 }
 
+std::vector<std::pair<int, int>> monotone_by_segment_length(const std::vector<InterpolationPair>& pairs,
+                                                            double tolerance, const std::vector<double>& edges) {
+  if (!std::is_sorted(edges.begin(), edges.end()))
+    throw std::invalid_argument("monotone_by_segment_length: edges must ascend");
+  std::vector<std::pair<int, int>> bins(edges.size() + 1);
+  for (const auto& p : pairs) {
+    auto& bin = bins[std::upper_bound(edges.begin(), edges.end(), p.segment_length()) - edges.begin()];
+    bin.first += p.monotone(tolerance);
+    bin.second += 1;
+  }
+  return bins;
+}
+
 std::vector<InterpolationPair> interpolate_reaches(const Env& prototype, const DemoSet& demos,
                                                    const std::vector<std::pair<int64_t, int64_t>>& pairs,
                                                    const torch::Tensor& z_a, const torch::Tensor& z_b,

@@ -62,6 +62,13 @@ struct InterpolationPair {
   double segment_length() const;  // |d_b - d_a| (m)
 };
 
+// Monotone pairs among those whose segment is at least `edges[i-1]` and shorter than `edges[i]`
+// (m, ascending; the first bin starts at 0, the last has no end): (monotone, total) per bin.
+// A short segment is the hard case: its α steps are a few centimetres, the size of the
+// imitation error itself.
+std::vector<std::pair<int, int>> monotone_by_segment_length(const std::vector<InterpolationPair>& pairs,
+                                                            double tolerance, const std::vector<double>& edges);
+
 // s and the distance from the line through a and b, for point p (a != b).
 std::pair<double, double> segment_coordinates(const Point3& a, const Point3& b, const Point3& p);
 

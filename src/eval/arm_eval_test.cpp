@@ -61,6 +61,23 @@ TEST(ArmEval, MonotoneAllowsOnlyTheToleratedStepBack) {
   EXPECT_TRUE(p.monotone(0.0));
 }
 
+TEST(ArmEval, MonotonePairsCountedBySegmentLength) {
+  auto pair = [](double length, bool monotone) {
+    InterpolationPair p;
+    p.demo_end_b = {length, 0, 0};
+    p.along = monotone ? std::vector<double>{0, 1} : std::vector<double>{1, 0};
+    return p;
+  };
+  const std::vector<InterpolationPair> pairs{pair(0.1, false), pair(0.2, true), pair(0.3, false),
+                                             pair(0.5, true), pair(0.9, true)};
+  const auto bins = monotone_by_segment_length(pairs, 0.0, {0.2, 0.4});
+  ASSERT_EQ(bins.size(), 3u);
+  EXPECT_EQ(bins[0], (std::pair<int, int>{0, 1}));  // [0, 0.2)
+  EXPECT_EQ(bins[1], (std::pair<int, int>{1, 2}));  // [0.2, 0.4): 0.2 belongs here
+  EXPECT_EQ(bins[2], (std::pair<int, int>{2, 2}));  // 0.4 and longer
+  EXPECT_THROW(monotone_by_segment_length(pairs, 0.0, {0.4, 0.2}), std::invalid_argument);
+}
+
 TEST(ArmEval, ImitationWithTheDemonstratorsCommandEndsWhereTheDemonstrationDid) {
   const ArmEnv env;
   const DemoSet demos = two_reaches(env);
