@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The arm results of docs/results.md (paper section 4.1), from the published demonstrations and a
+# The arm results of docs/results.md (paper section 4.1), from the published (offset-free) demonstrations and a
 # VAE trained by the README's command (its checkpoint is not in the repository).
 # Usage: scripts/arm_results.sh [OUT_DIR]   (default results/arm; about two minutes on 2 cores)
 set -euo pipefail

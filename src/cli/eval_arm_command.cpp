@@ -158,7 +158,7 @@ void run_eval_arm(const EvalArmFlags& f) {
       seen[r.expert_id] = true;
       drawn.push_back(r);
     }
-  eval::reach_paths_chart(drawn, "test demonstrations (solid) and VAE imitations (dashed), seen from above")
+  eval::reach_paths_chart(drawn, "test demos (solid), imitations (dashed)")
       .save_png(f.out_dir + "/reach_paths.png");
   for (int p = 0; p < std::min<int>(f.drawn_pairs, interpolations.size()); ++p)
     eval::interpolation_chart(interpolations[p], demos, "latent interpolation, pair " + std::to_string(p))
