@@ -98,8 +98,7 @@ void DemoWriter::append(const Episode& e) {
   const std::string name = "episode_" + std::to_string(episodes_);
   validate_episode(e, header_, path_ + ": " + name);
   const std::string where = path_ + ": " + name;
-  h5::Handle group(H5Gcreate2(file_, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  if (!group.valid()) throw DataError(where + ": cannot create group");
+  const h5::Handle group = h5::create_group(file_, name, where);
   const hsize_t T = e.rewards.size();
   const hid_t g = group.get();
   h5::write_dataset(g, "observations", H5T_NATIVE_FLOAT, H5T_IEEE_F32LE,
@@ -110,7 +109,7 @@ void DemoWriter::append(const Episode& e) {
   h5::Handle boolean = h5::bool_type();
   h5::write_dataset(g, "terminations", boolean.get(), boolean.get(), {T}, e.terminations.data(), where);
   h5::write_dataset(g, "truncations", boolean.get(), boolean.get(), {T}, e.truncations.data(), where);
-  h5::Handle features(H5Gcreate2(g, "features", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  const h5::Handle features = h5::create_group(g, "features", where);
   const size_t nf = header_.feature_names.size();
   std::vector<double> column(T + 1);
   for (size_t f = 0; f < nf; ++f) {

@@ -35,11 +35,19 @@ namespace {
 constexpr hsize_t kCompactBytes = 8 * 1024;  // well under the 64 KiB an object header can hold
 }  // namespace
 
+Handle create_group(hid_t parent, const std::string& name, const std::string& where) {
+  Handle plist = checked(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, where + ": property list");
+  check(H5Pset_obj_track_times(plist.get(), false), where + ": untimed group");
+  return checked(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, plist.get(), H5P_DEFAULT), H5Gclose,
+                 where + ": cannot create group " + name);
+}
+
 void write_dataset(hid_t parent, const std::string& name, hid_t mem_type, hid_t file_type,
                    const std::vector<hsize_t>& dims, const void* data, const std::string& where) {
   Handle space = checked(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                          H5Sclose, where + ": cannot describe dataset " + name);
   Handle plist = checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, where + ": property list");
+  check(H5Pset_obj_track_times(plist.get(), false), where + ": untimed dataset");
   hsize_t elements = 1;
   for (hsize_t d : dims) elements *= d;
   // Small datasets live in the object header: a chunked one costs kilobytes of index and

@@ -30,7 +30,9 @@ class Handle {
 
 void silence_errors();
 
-// Writing. `where` names the object in error messages.
+// Writing. `where` names the object in error messages. Objects carry no creation or
+// modification times, so that the same episodes make the same bytes.
+Handle create_group(hid_t parent, const std::string& name, const std::string& where);
 void write_dataset(hid_t parent, const std::string& name, hid_t mem_type, hid_t file_type,
                    const std::vector<hsize_t>& dims, const void* data, const std::string& where);
 void write_string_attr(hid_t obj, const std::string& name, const std::string& value);
