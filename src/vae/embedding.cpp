@@ -114,7 +114,6 @@ template <typename PoolFor>
 KnnResult tally(const std::vector<const EmbeddingRow*>& queries, int k, PoolFor pool_for) {
   if (k < 1) throw std::invalid_argument("knn: k must be >= 1");
   KnnResult result;
-  result.k = k;
   std::map<std::string, std::pair<int, int>> per_expert;  // (correct, total)
   for (const auto* q : queries) {
     const auto& pool = pool_for(*q);

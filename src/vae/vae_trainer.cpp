@@ -70,8 +70,8 @@ double scheduled_learning_rate(const VaeConfig& config, int epoch) {
   const int E = config.lr_decay_epochs;
   if (E == 0) return config.learning_rate;
   if (epoch > E)
-    throw std::invalid_argument("scheduled_learning_rate: epoch " + std::to_string(epoch) +
-                                " is past lr_decay_epochs (" + std::to_string(E) + ")");
+    throw std::invalid_argument("epoch " + std::to_string(epoch) + " runs past lr_decay_epochs (" +
+                                std::to_string(E) + "), where the learning rate is 0");
   return config.learning_rate * 0.5 * (1.0 + std::cos(M_PI * (epoch - 1) / E));
 }
 
@@ -107,11 +107,7 @@ VaeTrainer::VaeTrainer(const VaeConfig& config, TrainerOptions options, Trajecto
   train_.validate(config_);
   if (train_.size() == 0) throw std::invalid_argument("VaeTrainer: empty training set");
   if (val_.size() > 0) val_.validate(config_);
-  if (config_.lr_decay_epochs > 0 && options_.epochs > config_.lr_decay_epochs)
-    throw std::invalid_argument("VaeTrainer: " + std::to_string(options_.epochs) +
-                                " epochs run past lr_decay_epochs (" +
-                                std::to_string(config_.lr_decay_epochs) +
-                                "), where the learning rate is 0");
+  if (options_.epochs >= 1) scheduled_learning_rate(config_, options_.epochs);  // the run fits the schedule
 
   torch::manual_seed(stream_seed(options_.seed, kInit, 0));
   model_ = TrajectoryVae(config_);
