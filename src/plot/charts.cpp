@@ -191,14 +191,25 @@ class Axes {
 
   void draw_texts(const Labels& labels) {
     const double centre_x = (left_ + right_) / 2;
-    if (!labels.title.empty())
-      canvas_.draw_text(centre_x, kPad, labels.title, kInk, kTitleScale, Align::Center);
+    if (!labels.title.empty()) draw_title(labels.title, centre_x);
     if (!labels.x.empty())
       canvas_.draw_text(centre_x, canvas_.height() - kPad, labels.x, kInk, kTextScale,
                         Align::Center, Align::End);
     if (!labels.y.empty())
       canvas_.draw_text_upwards(kPad, (top_ + bottom_) / 2, labels.y, kInk, kTextScale,
                                 Align::Start, Align::Center);
+  }
+
+  // A title too wide for the canvas at the title scale is drawn smaller, and one wider than
+  // the plot area is centred on the canvas instead, so that no title is cut at the edges.
+  void draw_title(const std::string& title, double centre_x) {
+    const int room = canvas_.width() - 2 * kPad;
+    int scale = kTitleScale;
+    while (scale > 1 && text_width(title, scale) > room) --scale;
+    const double half = text_width(title, scale) / 2.0;
+    const double x = half * 2 > room ? canvas_.width() / 2.0
+                                     : std::clamp(centre_x, kPad + half, canvas_.width() - kPad - half);
+    canvas_.draw_text(x, kPad, title, kInk, scale, Align::Center);
   }
 
   void draw_grid_and_ticks() {

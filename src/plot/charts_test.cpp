@@ -146,6 +146,21 @@ TEST(LineChart, SeriesDrawnInPaletteOrder) {
   EXPECT_GE(second, 1);
 }
 
+TEST(Labels, ALongTitleShrinksToStayInsideTheCanvas) {
+  const std::string title(70, 'W');  // about 1,400 pixels wide at the title scale
+  const Canvas c = line_chart({title, "", ""}, {{"", {0, 1}, {0, 1}}});
+  const Rgb background = c.pixel(0, 0);
+  const int band = 40;  // the title's rows
+  int inked = 0;
+  for (int y = 0; y < band; ++y)
+    for (int x = 0; x < c.width(); ++x) {
+      const bool ink = !(c.pixel(x, y) == background);
+      inked += ink;
+      if (x < 4 || x >= c.width() - 4) EXPECT_FALSE(ink) << "title ink at column " << x;
+    }
+  EXPECT_GT(inked, 500);
+}
+
 TEST(PathChart, UsesGivenColoursAndKeepsUnitsEqual) {
   const Rgb red{220, 30, 30};
   // A unit square: with equal units its drawn width and height agree.
