@@ -114,10 +114,11 @@ template <typename PoolFor>
 KnnResult tally(const std::vector<const EmbeddingRow*>& queries, int k, PoolFor pool_for) {
   if (k < 1) throw std::invalid_argument("knn: k must be >= 1");
   KnnResult result;
+  result.k = k;
   std::map<std::string, std::pair<int, int>> per_expert;  // (correct, total)
   for (const auto* q : queries) {
     const auto& pool = pool_for(*q);
-    result.k = std::min<int>(k, static_cast<int>(pool.size()));
+    result.k = std::min<int>(result.k, static_cast<int>(pool.size()));
     const bool hit = vote(*q, pool, k) == q->context;
     result.total += 1;
     result.correct += hit;

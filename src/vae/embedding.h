@@ -30,7 +30,7 @@ std::vector<EmbeddingRow> parse_embedding_csv(const std::string& text, const std
 
 struct KnnResult {
   bool leave_one_expert_out = false;  // false: the held-out rows against the training rows
-  int k = 0;
+  int k = 0;  // the k asked for, or the fewest rows a query's pool held if that was fewer
   int total = 0, correct = 0;
   std::map<double, std::pair<int, int>> per_target;  // context -> (correct, total)
   // Experts whose rows were classified, and those with more than half of them correct.

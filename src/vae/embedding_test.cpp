@@ -114,6 +114,17 @@ TEST(EmbeddingTest, LeaveOneExpertOutVotesWithoutTheExpertsOwnRows) {
   EXPECT_THROW(knn_classify_leave_one_expert_out({at("a", 1, 0), at("a", 1, 1)}, 1), std::invalid_argument);
 }
 
+TEST(EmbeddingTest, KnnReportsTheSmallestPoolsK) {
+  // Left out, b's rows vote among a's single row (k 1), a's row among b's three (k 3).
+  auto at = [](const std::string& expert, double x) {
+    EmbeddingRow r = row(0, 1, false, {x});
+    r.expert_id = expert;
+    return r;
+  };
+  EXPECT_EQ(knn_classify_leave_one_expert_out({at("b", 0), at("b", 1), at("b", 2), at("a", 3)}, 3).k, 1);
+  EXPECT_EQ(knn_classify(synthetic(0.3, 1), 5).k, 5);
+}
+
 TEST(EmbeddingTest, KnnCountsExpertsWithAMajorityCorrect) {
   const auto result = knn_classify(synthetic(0.3, 1), 5);
   EXPECT_EQ(result.experts, 4);  // row() names experts e0..e3
