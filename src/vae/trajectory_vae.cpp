@@ -124,49 +124,59 @@ EncoderOutput TrajectoryVaeImpl::encode(const torch::Tensor& states,
   return encoder_->forward(encoder_input(normalize_states(states), state_mask, false), state_mask);
 }
 
-VaeLoss TrajectoryVaeImpl::loss(const torch::Tensor& states, const torch::Tensor& actions,
-                                const torch::Tensor& mask, const torch::Tensor& noise) {
+TrajectoryVaeImpl::Prepared TrajectoryVaeImpl::prepare(const torch::Tensor& states, const torch::Tensor& actions,
+                                                       const torch::Tensor& mask) const {
   TORCH_CHECK(states.dim() == 3 && actions.dim() == 3 && states.size(0) == actions.size(0) &&
                   states.size(1) == actions.size(1) + 1 &&
                   states.size(2) == config_.state_dim && actions.size(2) == config_.action_dim,
-              "TrajectoryVae::loss: states must be [B, T+1, D] and actions [B, T, A]");
-  const int64_t B = actions.size(0), T = actions.size(1), D = config_.state_dim;
-  const int64_t Z = config_.latent_dim;
-  torch::Tensor step_mask, state_mask;
-  auto x = normalize_states(states);
-  auto a = normalize_actions(modelled_actions(states, actions));
+              "TrajectoryVae: states must be [B, T+1, D] and actions [B, T, A]");
+  const int64_t B = actions.size(0), T = actions.size(1);
+  Prepared p{normalize_states(states), normalize_actions(modelled_actions(states, actions)), {}, {}};
   if (mask.defined()) {
-    TORCH_CHECK(mask.sizes() == torch::IntArrayRef({B, T}), "TrajectoryVae::loss: mask must be [B, T]");
-    step_mask = mask.to(states.device()).to(torch::kBool);
-    state_mask = state_mask_from_step_mask(step_mask);
+    TORCH_CHECK(mask.sizes() == torch::IntArrayRef({B, T}), "TrajectoryVae: mask must be [B, T]");
+    p.step_mask = mask.to(states.device()).to(torch::kBool);
+    p.state_mask = state_mask_from_step_mask(p.step_mask);
     // Zero the padding so that nothing in it (even NaN) reaches a value or a gradient.
-    x = torch::where(state_mask.unsqueeze(-1), x, torch::zeros_like(x));
-    a = torch::where(step_mask.unsqueeze(-1), a, torch::zeros_like(a));
+    p.x = torch::where(p.state_mask.unsqueeze(-1), p.x, torch::zeros_like(p.x));
+    p.a = torch::where(p.step_mask.unsqueeze(-1), p.a, torch::zeros_like(p.a));
   }
+  return p;
+}
 
-  const auto q = encoder_->forward(encoder_input(x, state_mask, is_training()), state_mask);
-  const auto eps = noise.defined() ? noise.to(q.mean.device()) : torch::randn_like(q.mean);
-  TORCH_CHECK(eps.sizes() == q.mean.sizes(), "TrajectoryVae::loss: noise must be [B, Z]");
-  const auto z = reparameterize(q.mean, q.log_std, eps);
-
-  const auto x_t = x.narrow(1, 0, T);
+DecoderNll TrajectoryVaeImpl::decoder_nll(const Prepared& p, const torch::Tensor& z) {
+  const int64_t B = p.a.size(0), T = p.a.size(1), D = config_.state_dim, Z = config_.latent_dim;
+  TORCH_CHECK(z.sizes() == torch::IntArrayRef({B, Z}), "TrajectoryVae: z must be [B, Z]");
+  const auto x_t = p.x.narrow(1, 0, T);
   const auto z_t = z.unsqueeze(1).expand({B, T, Z});
-  const auto action_lp = action_decoder_->log_prob(x_t, z_t, a);  // [B, T]
+  const auto action_lp = action_decoder_->log_prob(x_t, z_t, p.a);  // [B, T]
   const auto state_lp = state_decoder_
-                            ->log_prob(x_t.reshape({B * T, D}), x.narrow(1, 1, T).reshape({B * T, D}),
+                            ->log_prob(x_t.reshape({B * T, D}), p.x.narrow(1, 1, T).reshape({B * T, D}),
                                        z_t.reshape({B * T, Z}))
                             .sum(-1)
                             .view({B, T});
   auto per_step_action = action_lp, per_step_state = state_lp;
-  if (step_mask.defined()) {
-    per_step_action = torch::where(step_mask, action_lp, torch::zeros_like(action_lp));
-    per_step_state = torch::where(step_mask, state_lp, torch::zeros_like(state_lp));
+  if (p.step_mask.defined()) {
+    per_step_action = torch::where(p.step_mask, action_lp, torch::zeros_like(action_lp));
+    per_step_state = torch::where(p.step_mask, state_lp, torch::zeros_like(state_lp));
   }
-  const auto action_nll = -per_step_action.sum(1);  // [B]
-  const auto state_nll = -per_step_state.sum(1);
+  return {-per_step_action.sum(1), -per_step_state.sum(1)};
+}
+
+DecoderNll TrajectoryVaeImpl::decoder_nll(const torch::Tensor& states, const torch::Tensor& actions,
+                                          const torch::Tensor& z, const torch::Tensor& mask) {
+  return decoder_nll(prepare(states, actions, mask), z);
+}
+
+VaeLoss TrajectoryVaeImpl::loss(const torch::Tensor& states, const torch::Tensor& actions,
+                                const torch::Tensor& mask, const torch::Tensor& noise) {
+  const auto p = prepare(states, actions, mask);
+  const auto q = encoder_->forward(encoder_input(p.x, p.state_mask, is_training()), p.state_mask);
+  const auto eps = noise.defined() ? noise.to(q.mean.device()) : torch::randn_like(q.mean);
+  TORCH_CHECK(eps.sizes() == q.mean.sizes(), "TrajectoryVae::loss: noise must be [B, Z]");
+  const auto nll = decoder_nll(p, reparameterize(q.mean, q.log_std, eps));
   const auto kl = kl_to_standard_normal(q.mean, q.log_std);
-  const auto per_trajectory = action_nll + state_nll + config_.kl_weight * kl;
-  return {per_trajectory.mean(), action_nll.mean(), state_nll.mean(), kl.mean(), per_trajectory};
+  const auto per_trajectory = nll.action + nll.state + config_.kl_weight * kl;
+  return {per_trajectory.mean(), nll.action.mean(), nll.state.mean(), kl.mean(), per_trajectory};
 }
 
 torch::Tensor TrajectoryVaeImpl::action_mean(const torch::Tensor& state, const torch::Tensor& z) {

@@ -42,6 +42,12 @@ struct VaeLoss {
   torch::Tensor per_trajectory;  // [B] total of each trajectory
 };
 
+// The decoders' negative log-likelihoods of each trajectory given its z: [B] each.
+struct DecoderNll {
+  torch::Tensor action;  // -sum_t log pi(a_t | x_t, z)
+  torch::Tensor state;   // -sum_t log p(x_{t+1} | x_t, z)
+};
+
 class TrajectoryVaeImpl : public torch::nn::Module {
  public:
   explicit TrajectoryVaeImpl(const VaeConfig& config);
@@ -56,6 +62,10 @@ class TrajectoryVaeImpl : public torch::nn::Module {
   // with torch's default generator on the model's device.
   VaeLoss loss(const torch::Tensor& states, const torch::Tensor& actions,
                const torch::Tensor& mask = {}, const torch::Tensor& noise = {});
+
+  // The decoders' likelihood of a batch (as loss()) at a given z [B, Z] instead of a sample of q.
+  DecoderNll decoder_nll(const torch::Tensor& states, const torch::Tensor& actions, const torch::Tensor& z,
+                         const torch::Tensor& mask = {});
 
   // q(z | states): states [B, S, D] raw, mask [B, S] over states (optional).
   EncoderOutput encode(const torch::Tensor& states, const torch::Tensor& state_mask = {});
@@ -86,6 +96,13 @@ class TrajectoryVaeImpl : public torch::nn::Module {
   ActionDecoder action_decoder_{nullptr};
   StateDecoder state_decoder_{nullptr};
   torch::Tensor state_mean_, state_std_, action_mean_, action_std_;
+
+  // A batch normalised, its padding zeroed; the masks undefined without a mask.
+  struct Prepared {
+    torch::Tensor x, a, step_mask, state_mask;
+  };
+  Prepared prepare(const torch::Tensor& states, const torch::Tensor& actions, const torch::Tensor& mask) const;
+  DecoderNll decoder_nll(const Prepared& prepared, const torch::Tensor& z);
 
   // x[..., k_j] for each action component j: [..., A] raw; a scalar 0 without offsets.
   torch::Tensor action_offset(const torch::Tensor& state) const;

@@ -54,6 +54,10 @@ TEST_F(TrajectoryVaeTest, LossIsTheSumOfTheThreeDensities) {
   }
   EXPECT_NEAR(loss.action_nll.item<double>(), -action_lp, 1e-3);
   EXPECT_NEAR(loss.state_nll.item<double>(), -state_lp, 1e-3);
+  // The decoders' part alone, at the same z.
+  const auto nll = vae->decoder_nll(states, actions, z);
+  EXPECT_NEAR(nll.action.item<double>(), -action_lp, 1e-3);
+  EXPECT_NEAR(nll.state.item<double>(), -state_lp, 1e-3);
 }
 
 TEST_F(TrajectoryVaeTest, EncoderInputNoiseReachesOnlyTheEncoderAndOnlyInTraining) {
