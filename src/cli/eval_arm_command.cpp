@@ -3,7 +3,8 @@
 // final distance to the demonstration's end point is summarised (Figure 2's paths drawn), and
 // pairs of test (or training) demonstrations from different experts are interpolated in latent space
 // (Figure 3), each pair judged by whether its reached end points move monotonically along the
-// segment between the demonstrations' end points.
+// segment between the demonstrations' end points. With --gail the diverse-GAIL policy fine-tuned
+// on the same VAE imitates instead, from the same z.
 #include <torch/torch.h>
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include "cli/task_options.h"
 #include "eval/arm_eval.h"
 #include "eval/walker_eval.h"
+#include "gail/diverse_gail.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
 #include "vae/demo_dataset.h"
@@ -29,7 +31,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct EvalArmFlags {
-  std::string demos, vae, out_dir, device = "cpu", pairs_from = "test";
+  std::string demos, vae, gail, out_dir, device = "cpu", pairs_from = "test";
   int training_per_expert = 3, pair_experts = 10, drawn_paths = 10, drawn_pairs = 3;
   double monotone_tolerance = 0.0;
   vae::ImitationOptions rollout;
@@ -163,7 +165,9 @@ void run_eval_arm(const EvalArmFlags& f) {
   auto model = vae::load_trained_vae(f.vae, device);
   model->eval();
   const auto env = demo_env(demos, model);
-  const auto policy = vae::vae_mean_policy(model, device);
+  const auto policy = f.gail.empty() ? vae::vae_mean_policy(model, device)
+                                     : agent_mean_policy(load_gail_agent(f.gail, env->obs_dim(), env->act_dim(),
+                                                                         model, device));
 
   const auto test = held_out_episodes(demos);
   auto episodes = training_episodes(demos, f.training_per_expert);
@@ -185,8 +189,9 @@ void run_eval_arm(const EvalArmFlags& f) {
 
   fs::create_directories(f.out_dir);
   const std::string table =
-      "z: " + z.source() + "\n\n"
-      "Final end-effector distance between the VAE policy's imitation and the demonstration (cm):\n\n"
+      "policy: " + (f.gail.empty() ? std::string("the VAE's mean action") : "the mean action of " + f.gail) +
+      "\nz: " + z.source() + "\n\n"
+      "Final end-effector distance between the policy's imitation and the demonstration (cm):\n\n"
       "| demonstrations | n | mean | median | 90th percentile |\n|---|---|---|---|---|\n" +
       distance_line("test experts (unseen)", rows, true) + distance_line("training experts", rows, false) + "\n" +
       interpolation_summary(interpolations, f.pairs_from + " experts'", f.monotone_tolerance);
@@ -219,6 +224,7 @@ void add_eval_arm(CLI::App& eval) {
                                            "end-point distance) and interpolate between them in latent space");
   c->add_option("--demos", f->demos, "arm demonstration file (.h5) with the test experts marked held_out")->required();
   c->add_option("--vae", f->vae, "VAE checkpoint (RUN_DIR/checkpoints/latest.pt)")->required();
+  c->add_option("--gail", f->gail, "a diverse-GAIL run directory on the same VAE: its policy imitates instead of the VAE's");
   c->add_option("--out-dir", f->out_dir, "where the CSVs, the table and the PNGs go")->required();
   c->add_option("--training-per-expert", f->training_per_expert, "training demonstrations imitated per expert, for comparison")
       ->check(CLI::Range(0, 1 << 20))->capture_default_str();

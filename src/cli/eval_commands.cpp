@@ -29,14 +29,6 @@ struct EvalWalkerFlags {
   vae::ImitationOptions rollout;
 };
 
-// The policy's mean action; policies trained without a latent get an empty condition.
-vae::LatentPolicy agent_mean_policy(std::shared_ptr<Agent> agent) {
-  return [agent](const torch::Tensor& obs, const torch::Tensor& z) {
-    const auto condition = agent->condition_dim() > 0 ? z : torch::zeros({obs.size(0), 0});
-    return agent->policy().distribution(agent->input(obs, condition)).mean;
-  };
-}
-
 std::vector<double> column(const std::vector<eval::ImitationRow>& rows, const std::string& policy, bool held_out,
                            double (*value)(const eval::ImitationRow&)) {
   std::vector<double> out;

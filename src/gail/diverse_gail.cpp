@@ -213,6 +213,13 @@ std::shared_ptr<Agent> load_gail_agent(const std::string& run_dir, int obs_dim, 
   return agent;
 }
 
+vae::LatentPolicy agent_mean_policy(std::shared_ptr<Agent> agent) {
+  return [agent](const torch::Tensor& obs, const torch::Tensor& z) {
+    const auto condition = agent->condition_dim() > 0 ? z : torch::zeros({obs.size(0), 0});
+    return agent->policy().distribution(agent->input(obs, condition)).mean;
+  };
+}
+
 GailTrainer::GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env& prototype, GailOptions options,
                          std::string run_dir)
     : options_(std::move(options)), run_dir_(std::move(run_dir)) {

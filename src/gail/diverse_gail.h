@@ -48,6 +48,7 @@
 #include "gail/gail_reward.h"
 #include "rl/agent.h"
 #include "util/csv_log.h"
+#include "vae/imitation.h"
 #include "vae/trajectory_vae.h"
 
 namespace vaegail {
@@ -120,6 +121,10 @@ std::shared_ptr<Agent> make_gail_agent(const GailOptions& options, int obs_dim, 
 // on `device`, for evaluation; `vae` is required in diverse mode. Throws naming the file.
 std::shared_ptr<Agent> load_gail_agent(const std::string& run_dir, int obs_dim, int act_dim,
                                        vae::TrajectoryVae vae, torch::Device device);
+
+// An agent's mean action as a policy to roll out (vae/imitation.h); an agent trained without a
+// latent (plain GAIL, behaviour cloning) ignores z.
+vae::LatentPolicy agent_mean_policy(std::shared_ptr<Agent> agent);
 
 class GailTrainer {
  public:

@@ -110,6 +110,19 @@ TEST_F(DiverseGailTest, PlainModeHasNoLatentAnywhere) {
   EXPECT_EQ(t.train(), 3);
 }
 
+TEST_F(DiverseGailTest, ALoadedRunsMeanPolicyActsAsTheTrainedOneAndReadsZ) {
+  auto t = trainer("run", options);
+  t.train();
+  const auto loaded = agent_mean_policy(load_gail_agent((dir / "run").string(), env->obs_dim(), env->act_dim(),
+                                                        vae, torch::kCPU));
+  torch::NoGradGuard no_grad;
+  const auto obs = torch::randn({3, env->obs_dim()});
+  const auto z = torch::randn({3, vae->config().latent_dim});
+  const auto trained = t.agent().policy().distribution(t.agent().input(obs, z)).mean;
+  EXPECT_TRUE(torch::allclose(loaded(obs, z), trained));
+  EXPECT_FALSE(torch::allclose(loaded(obs, z), loaded(obs, z + 1)));
+}
+
 TEST_F(DiverseGailTest, RefusesOtherSettingsInAnExistingRun) {
   trainer("run", options);
   GailOptions other = options;
