@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The arm results of docs/results.md (paper section 4.1), from the published (offset-free) demonstrations and a
 # VAE trained by the README's command (its checkpoint is not in the repository).
-# Usage: scripts/arm_results.sh [OUT_DIR]   (default results/arm; about two minutes on 2 cores)
+# Usage: scripts/arm_results.sh [OUT_DIR]   (default results/arm; about 15 minutes on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/arm}
@@ -19,3 +19,7 @@ $v vae action-error --checkpoint $vae --demos $demos | tee "$out/action_error.tx
 $v eval arm --demos $demos --vae $vae --out-dir "$out/eval" | tee "$out/eval.txt"
 $v eval arm --demos $demos --vae $vae --out-dir "$out/eval_training_pairs" --pairs-from training \
     --training-per-expert 1 | tee "$out/eval_training_pairs.txt"
+# Is the miss the encoder's or the decoders'? The same, from z refined towards the mode of
+# p(z | demonstration) (about 12 minutes).
+$v --torch-threads 1 eval arm --demos $demos --vae $vae --out-dir "$out/eval_refined" --refine-steps 50 \
+    --training-per-expert 1 | tee "$out/eval_refined.txt"
