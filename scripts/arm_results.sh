@@ -10,7 +10,7 @@ demos=data/arm/demos.h5
 vae=checkpoints/arm/vae/checkpoints/latest.pt
 mkdir -p "$out"
 
-# Linear: with 60 epochs the training loss falls below 0 (a density over normalised states).
+# Linear: the loss can fall below 0 (a density over normalised states; the 60-epoch vae_noise005 run did).
 $v plot curves --csv checkpoints/arm/vae/metrics.csv --y train_loss,val_loss \
     --title "arm VAE: loss per epoch" --out "$out/vae_loss.png"
 # Does the policy read z? Teacher-forced action error with the own, another and a zero z.
