@@ -4,7 +4,8 @@
 // pairs of test (or training) demonstrations from different experts are interpolated in latent space
 // (Figure 3), each pair judged by whether its reached end points move monotonically along the
 // segment between the demonstrations' end points. With --gail the diverse-GAIL policy fine-tuned
-// on the same VAE imitates instead, from the same z.
+// on the same VAE imitates instead, from the same z; with --joint-blend no model does, and the
+// same measurements are taken of interpolating the demonstrations' final joint commands.
 #include <torch/torch.h>
 
 #include <algorithm>
@@ -34,35 +35,16 @@ struct EvalArmFlags {
   std::string demos, vae, gail, out_dir, device = "cpu", pairs_from = "test";
   int training_per_expert = 3, pair_experts = 10, drawn_paths = 10, drawn_pairs = 3;
   double monotone_tolerance = 0.0;
+  bool joint_blend = false;
   vae::ImitationOptions rollout;
   vae::RefineOptions refine{0, 0.05, 64};  // 0 steps: the encoder's mean, as the paper
 };
 
-// z of each episode (by index into the episodes): the encoder's mean, refined when asked.
+// z of each episode (by index into the episodes), and where it came from, for the report.
 class Embeddings {
  public:
-  Embeddings(vae::TrajectoryVae& model, const DemoSet& demos, std::vector<int64_t> episodes,
-             const vae::RefineOptions& refine)
-      : episodes_(std::move(episodes)) {
-    z_ = vae::encode_episodes(model, demos, episodes_);
-    if (refine.steps == 0) {
-      source_ = "the encoder's mean";
-      return;
-    }
-    const auto data = vae::to_trajectory_dataset(demos, episodes_, model->config());
-    const double before = vae::latent_objective(model, data, z_).mean().item<double>();
-    Progress progress("refine z", static_cast<std::int64_t>(episodes_.size()), "demos");
-    z_ = vae::refine_latents(model, data, z_, refine, &progress);
-    progress.finish();
-    const double after = vae::latent_objective(model, data, z_).mean().item<double>();
-    char text[300];
-    std::snprintf(text, sizeof text,
-                  "the encoder's mean refined by %d Adam steps (lr %g) towards the mode of p(z | demonstration); "
-                  "-log p(demonstration, z) per demonstration %.1f at the encoder's mean, %.1f refined",
-                  refine.steps, refine.learning_rate, before, after);
-    source_ = text;
-  }
-  // Where the z came from, for the report.
+  Embeddings(std::vector<int64_t> episodes, torch::Tensor z, std::string source)
+      : episodes_(std::move(episodes)), z_(std::move(z)), source_(std::move(source)) {}
   const std::string& source() const { return source_; }
   torch::Tensor of(const std::vector<int64_t>& episodes) const {
     std::vector<int64_t> rows;
@@ -76,6 +58,41 @@ class Embeddings {
   torch::Tensor z_;
   std::string source_;
 };
+
+// The encoder's mean, refined when asked.
+Embeddings encoded(vae::TrajectoryVae& model, const DemoSet& demos, std::vector<int64_t> episodes,
+                   const vae::RefineOptions& refine) {
+  torch::Tensor z = vae::encode_episodes(model, demos, episodes);
+  if (refine.steps == 0) return Embeddings(std::move(episodes), z, "the encoder's mean");
+  const auto data = vae::to_trajectory_dataset(demos, episodes, model->config());
+  const double before = vae::latent_objective(model, data, z).mean().item<double>();
+  Progress progress("refine z", static_cast<std::int64_t>(episodes.size()), "demos");
+  z = vae::refine_latents(model, data, z, refine, &progress);
+  progress.finish();
+  const double after = vae::latent_objective(model, data, z).mean().item<double>();
+  char text[300];
+  std::snprintf(text, sizeof text,
+                "the encoder's mean refined by %d Adam steps (lr %g) towards the mode of p(z | demonstration); "
+                "-log p(demonstration, z) per demonstration %.1f at the encoder's mean, %.1f refined",
+                refine.steps, refine.learning_rate, before, after);
+  return Embeddings(std::move(episodes), z, text);
+}
+
+// The reference without a VAE: an episode's "embedding" is the last joint command it recorded,
+// and the policy holds it. Blending two of them is interpolation in joint space, which is what a
+// latent that encodes the final posture would give at best; how monotone the hand's end point is
+// along it is a property of the arm, not of any model.
+Embeddings final_commands(const DemoSet& demos, std::vector<int64_t> episodes) {
+  const int64_t act_dim = demos.header.act_dim();
+  torch::Tensor z = torch::empty({static_cast<int64_t>(episodes.size()), act_dim});
+  for (size_t i = 0; i < episodes.size(); ++i) {
+    const auto& actions = demos.episodes[episodes[i]].actions;
+    z[i] = torch::tensor(std::vector<float>(actions.end() - act_dim, actions.end()));
+  }
+  return Embeddings(std::move(episodes), z, "each demonstration's last joint command (joint-space reference, no VAE)");
+}
+
+const vae::LatentPolicy kHoldTheCommandInZ = [](const torch::Tensor&, const torch::Tensor& z) { return z.clone(); };
 
 // Every episode of the experts marked held out, in file order.
 std::vector<int64_t> held_out_episodes(const DemoSet& demos) {
@@ -159,15 +176,20 @@ std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pa
 void run_eval_arm(const EvalArmFlags& f) {
   torch::NoGradGuard no_grad;
   const auto device = parse_device(f.device);
-  if (!fs::exists(f.vae)) throw std::invalid_argument(f.vae + ": no such VAE checkpoint");
+  if (!f.joint_blend && f.vae.empty()) throw std::invalid_argument("--vae is required (or --joint-blend)");
+  if (!f.vae.empty() && !fs::exists(f.vae)) throw std::invalid_argument(f.vae + ": no such VAE checkpoint");
   const DemoSet demos = read_demos(f.demos);
   if (demos.header.env_id != "arm") throw std::invalid_argument(f.demos + ": recorded in '" + demos.header.env_id + "', not the arm");
-  auto model = vae::load_trained_vae(f.vae, device);
-  model->eval();
-  const auto env = demo_env(demos, model);
-  const auto policy = f.gail.empty() ? vae::vae_mean_policy(model, device)
-                                     : agent_mean_policy(load_gail_agent(f.gail, env->obs_dim(), env->act_dim(),
-                                                                         model, device));
+  vae::TrajectoryVae model{nullptr};
+  if (!f.joint_blend) {
+    model = vae::load_trained_vae(f.vae, device);
+    model->eval();
+  }
+  const auto env = f.joint_blend ? demo_env(demos) : demo_env(demos, model);
+  const auto policy = f.joint_blend    ? kHoldTheCommandInZ
+                      : f.gail.empty() ? vae::vae_mean_policy(model, device)
+                                       : agent_mean_policy(load_gail_agent(f.gail, env->obs_dim(), env->act_dim(),
+                                                                           model, device));
 
   const auto test = held_out_episodes(demos);
   auto episodes = training_episodes(demos, f.training_per_expert);
@@ -180,7 +202,7 @@ void run_eval_arm(const EvalArmFlags& f) {
     for (int64_t e : {i, j})
       if (std::find(embedded.begin(), embedded.end(), e) == embedded.end()) embedded.push_back(e);
   }
-  const Embeddings z(model, demos, embedded, f.refine);
+  const Embeddings z = f.joint_blend ? final_commands(demos, embedded) : encoded(model, demos, embedded, f.refine);
   Progress progress("eval arm", static_cast<std::int64_t>(episodes.size()), "rollouts");
   const auto rows = eval::imitate_reaches(*env, demos, episodes, z.of(episodes), policy, f.rollout, &progress);
   progress.finish();
@@ -189,7 +211,9 @@ void run_eval_arm(const EvalArmFlags& f) {
 
   fs::create_directories(f.out_dir);
   const std::string table =
-      "policy: " + (f.gail.empty() ? std::string("the VAE's mean action") : "the mean action of " + f.gail) +
+      "policy: " + (f.joint_blend    ? std::string("holds z as its joint command")
+                    : f.gail.empty() ? std::string("the VAE's mean action")
+                                     : "the mean action of " + f.gail) +
       "\nz: " + z.source() + "\n\n"
       "Final end-effector distance between the policy's imitation and the demonstration (cm):\n\n"
       "| demonstrations | n | mean | median | 90th percentile |\n|---|---|---|---|---|\n" +
@@ -223,8 +247,12 @@ void add_eval_arm(CLI::App& eval) {
   CLI::App* c = eval.add_subcommand("arm", "imitate the arm's test demonstrations with the VAE policy (final "
                                            "end-point distance) and interpolate between them in latent space");
   c->add_option("--demos", f->demos, "arm demonstration file (.h5) with the test experts marked held_out")->required();
-  c->add_option("--vae", f->vae, "VAE checkpoint (RUN_DIR/checkpoints/latest.pt)")->required();
-  c->add_option("--gail", f->gail, "a diverse-GAIL run directory on the same VAE: its policy imitates instead of the VAE's");
+  auto* vae = c->add_option("--vae", f->vae, "VAE checkpoint (RUN_DIR/checkpoints/latest.pt)");
+  auto* gail = c->add_option("--gail", f->gail, "a diverse-GAIL run directory on the same VAE: its policy imitates instead of the VAE's");
+  auto* blend = c->add_flag("--joint-blend", f->joint_blend,
+                            "reference without a VAE: z is each demonstration's last joint command and the policy holds "
+                            "it, so interpolation blends the two final commands in joint space");
+  blend->excludes(vae)->excludes(gail);
   c->add_option("--out-dir", f->out_dir, "where the CSVs, the table and the PNGs go")->required();
   c->add_option("--training-per-expert", f->training_per_expert, "training demonstrations imitated per expert, for comparison")
       ->check(CLI::Range(0, 1 << 20))->capture_default_str();
@@ -234,12 +262,13 @@ void add_eval_arm(CLI::App& eval) {
       ->check(CLI::Range(2, 1000))->capture_default_str();
   c->add_option("--monotone-tolerance", f->monotone_tolerance, "allowed step back along the segment, as a fraction of it")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
-  c->add_option("--refine-steps", f->refine.steps,
+  auto* refine = c->add_option("--refine-steps", f->refine.steps,
                 "Adam steps from the encoder's mean towards the mode of p(z | demonstration) under the decoders "
                 "(0: the encoder's mean, as the paper)")
       ->check(CLI::Range(0, 100000))->capture_default_str();
   c->add_option("--refine-lr", f->refine.learning_rate, "Adam's learning rate for --refine-steps")
       ->check(CLI::PositiveNumber)->capture_default_str();
+  blend->excludes(refine);
   c->add_option("--envs", f->rollout.num_envs, "environments stepped together")->check(CLI::Range(1, 1 << 20))->capture_default_str();
   add_device_option(*c, f->device);
   c->callback([f] { run_eval_arm(*f); });

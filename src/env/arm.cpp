@@ -96,7 +96,13 @@ double ArmEnv::command_jump() const {
 }
 
 double ArmEnv::reward(const float*) const {
-  return task_reward(target_distance()) - arm_options_.command_cost * command_jump();
+  return task_reward(target_distance()) - arm_options_.command_cost * command_jump() - posture_charge();
+}
+
+double ArmEnv::posture_charge() const {
+  double sq = 0;
+  for (int j = 0; j < kJoints; ++j) sq += data()->qpos[j] * data()->qpos[j];
+  return arm_options_.posture_cost * sq / kJoints;
 }
 
 void ArmEnv::initialize_episode(Rng&) {}  // the home pose: mj_resetData's qpos0 and zero velocity

@@ -15,13 +15,17 @@
 //
 // Reward for the expert stage, at most 1:
 //   0.5 * max(0, 1 - d / 1 m) + 0.5 * exp(-(d / 0.05)^2) - command_cost * mean_j (u_j - q_j)^2
+//     - posture_cost * mean_j q_j^2
 // The linear term pulls from anywhere in the workspace (no target is 1 m from the home grip),
 // the sharp one pays for being on the target and staying there (every step counts). The last
 // term charges each joint command u_j for its distance from the angle q_j the joint had when
 // it was commanded: without it DDPG's actors swing their commands from step to step and settle
 // by alternating around the target, so a demonstration's action is nearly noise given its state
 // and a VAE cannot learn it. It pays nothing at rest (no bias on the reached pose beyond the
-// servos' sag under gravity), and it depends only on the state and the action.
+// servos' sag under gravity), and it depends only on the state and the action. The optional
+// posture term (0 by default) charges the pose's distance from home: six arm joints place the
+// grip in three dimensions, so without it each expert settles on its own arbitrary pose, and two
+// experts with nearby targets can stand in poses far apart.
 #pragma once
 
 #include <array>
@@ -36,6 +40,7 @@ double point_distance(const std::array<double, 3>& a, const std::array<double, 3
 struct ArmOptions {
   int episode_length = 50;
   double command_cost = 0.1;  // per rad^2 of mean squared command-minus-angle
+  double posture_cost = 0.0;  // per rad^2 of mean squared joint angle
 };
 
 class ArmEnv : public MujocoEnv {
@@ -59,6 +64,8 @@ class ArmEnv : public MujocoEnv {
   static double task_reward(double target_distance);
   // mean_j (u_j - q_j)^2 of the last step's applied commands u against the angles q it began at.
   double command_jump() const;
+  // posture_cost * mean_j q_j^2 of the current pose: what the reward charges for standing away from home.
+  double posture_charge() const;
   StepOutcome step(const float* action) override;
 
  protected:

@@ -115,6 +115,28 @@ TEST(Arm, RewardChargesEachCommandForItsDistanceFromTheAngleItWasGivenAt) {
   EXPECT_NEAR(second.reward, ArmEnv::task_reward(env.target_distance()) - 0.1 * sq / 9, 1e-9);
 }
 
+TEST(Arm, RewardChargesThePoseForItsDistanceFromHome) {
+  ArmOptions options;
+  options.command_cost = 0;
+  options.posture_cost = 0.2;
+  ArmEnv env(options);
+  env.reset(0);
+  EXPECT_DOUBLE_EQ(env.posture_charge(), 0.0);  // the home pose is every angle 0
+  const std::vector<float> command = {0.4f, 0.6f, 0.3f, -0.5f, 0.5f, 0.3f, 0.7f, -0.7f, -0.7f};
+  StepOutcome out;
+  for (int t = 0; t < 5; ++t) out = env.step(command.data());
+  double sq = 0;
+  for (int j = 0; j < ArmEnv::kJoints; ++j) sq += std::pow(env.data()->qpos[j], 2);
+  EXPECT_GT(sq, 0.5);
+  EXPECT_NEAR(env.posture_charge(), 0.2 * sq / 9, 1e-12);
+  EXPECT_NEAR(out.reward, ArmEnv::task_reward(env.target_distance()) - 0.2 * sq / 9, 1e-9);
+  // Off by default: the published experts' reward has no posture term.
+  ArmEnv plain;
+  plain.reset(0);
+  plain.step(command.data());
+  EXPECT_DOUBLE_EQ(plain.posture_charge(), 0.0);
+}
+
 TEST(Arm, ServosSettleOnTheCommandedAnglesWithinHalfASecond) {
   ArmEnv env;
   env.reset(0);

@@ -51,7 +51,8 @@ void from_json(const nlohmann::json& j, ArmExpertSpec& s) {
 
 void to_json(nlohmann::json& j, const ArmExpertOptions& o) {
   const DdpgOptions& d = o.ddpg;
-  j = {{"total_steps", o.total_steps}, {"eval_every", o.eval_every}, {"actor_hidden", d.actor_hidden},
+  j = {{"total_steps", o.total_steps}, {"eval_every", o.eval_every}, {"posture_cost", o.posture_cost},
+       {"actor_hidden", d.actor_hidden},
        {"critic_hidden", d.critic_hidden}, {"actor_learning_rate", d.actor_learning_rate},
        {"critic_learning_rate", d.critic_learning_rate}, {"gamma", d.gamma}, {"tau", d.tau},
        {"batch_size", d.batch_size}, {"exploration_std", d.exploration_std}, {"warmup_steps", d.warmup_steps},
@@ -63,6 +64,7 @@ void from_json(const nlohmann::json& j, ArmExpertOptions& o) {
   DdpgOptions& d = o.ddpg;
   o.total_steps = j.value("total_steps", def.total_steps);
   o.eval_every = j.value("eval_every", def.eval_every);
+  o.posture_cost = j.value("posture_cost", def.posture_cost);
   d.actor_hidden = j.value("actor_hidden", def.ddpg.actor_hidden);
   d.critic_hidden = j.value("critic_hidden", def.ddpg.critic_hidden);
   d.actor_learning_rate = j.value("actor_learning_rate", def.ddpg.actor_learning_rate);
@@ -117,8 +119,10 @@ ArmExpertResult read_result(const std::string& run_dir) {
   return {j.at("best_return").get<double>(), j.at("final_distance").get<double>(), j.value("path_ratio", 0.0)};
 }
 
-std::unique_ptr<ArmEnv> arm_for(const ArmExpertSpec& spec) {
-  auto env = std::make_unique<ArmEnv>();
+std::unique_ptr<ArmEnv> arm_for(const ArmExpertSpec& spec, const ArmExpertOptions& options) {
+  ArmOptions arm;
+  arm.posture_cost = options.posture_cost;
+  auto env = std::make_unique<ArmEnv>(arm);
   env->set_context(spec.target);
   return env;
 }
@@ -137,7 +141,7 @@ ArmExpertResult train_arm_expert(const ArmExpertSpec& spec, const ArmExpertOptio
   write_file_atomically(run_dir + "/options.json", nlohmann::json(options).dump(2));
   fs::remove(run_dir + "/metrics.csv");  // an interrupted run starts over
 
-  const auto env = arm_for(spec);
+  const auto env = arm_for(spec, options);
   auto ddpg = make_arm_ddpg(spec, options, *env, options.total_steps);
   CsvLog log(run_dir + "/metrics.csv", {"steps", "critic_loss", "actor_objective", "return", "final_distance", "path_ratio"});
   ArmExpertResult best{-1.0, 0.0};
@@ -168,7 +172,7 @@ LoadedArmExpert load_arm_expert(const std::string& run_dir) {
   e.spec = read_json_file(run_dir + "/spec.json").get<ArmExpertSpec>();
   e.options = read_json_file(run_dir + "/options.json").get<ArmExpertOptions>();
   e.result = read_result(run_dir);
-  e.ddpg = make_arm_ddpg(e.spec, e.options, *arm_for(e.spec), 1);
+  e.ddpg = make_arm_ddpg(e.spec, e.options, *arm_for(e.spec, e.options), 1);
   e.ddpg->load_actor(run_dir + "/actor.pt");
   return e;
 }

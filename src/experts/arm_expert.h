@@ -37,6 +37,9 @@ std::vector<ArmExpertSpec> arm_expert_specs(int count, std::uint64_t seed);
 struct ArmExpertOptions {
   std::int64_t total_steps = 50000;
   int eval_every = 1000;  // steps between noise-free evaluations (and best-actor snapshots)
+  // The reward's charge for the pose's distance from home (ArmOptions::posture_cost): with it
+  // every expert resolves the arm's redundancy the same way, so nearby targets get nearby poses.
+  double posture_cost = 0.0;
   DdpgOptions ddpg = default_ddpg();
   static DdpgOptions default_ddpg();
 };

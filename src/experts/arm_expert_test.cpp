@@ -48,8 +48,11 @@ TEST(ArmExperts, SpecsAreReproducibleDistinctAndInTheWorkspace) {
 TEST(ArmExperts, OptionsSurviveJson) {
   ArmExpertOptions o = tiny_options();
   o.ddpg.tau = 0.01;
+  o.posture_cost = 0.1;
   const ArmExpertOptions back = nlohmann::json(o).get<ArmExpertOptions>();
   EXPECT_EQ(back.total_steps, 300);
+  EXPECT_DOUBLE_EQ(back.posture_cost, 0.1);
+  EXPECT_DOUBLE_EQ(nlohmann::json::object().get<ArmExpertOptions>().posture_cost, 0.0);  // runs that predate it
   EXPECT_EQ(back.ddpg.actor_hidden, std::vector<int>{16});
   EXPECT_DOUBLE_EQ(back.ddpg.tau, 0.01);
   EXPECT_THROW(nlohmann::json({{"id", "x"}, {"target", {1.0, 2.0}}, {"seed", 1}}).get<ArmExpertSpec>(),
