@@ -79,9 +79,9 @@ Embeddings encoded(vae::TrajectoryVae& model, const DemoSet& demos, std::vector<
 }
 
 // The reference without a VAE: an episode's "embedding" is the last joint command it recorded,
-// and the policy holds it. Blending two of them is interpolation in joint space, which is what a
-// latent that encodes the final posture would give at best; how monotone the hand's end point is
-// along it is a property of the arm, not of any model.
+// and the policy holds it. Blending two of them is interpolation in joint space, what a latent
+// that encoded only the final pose would give; how the hand's end point moves along it is a
+// property of the experts' poses and the arm, not of any model.
 Embeddings final_commands(const DemoSet& demos, std::vector<int64_t> episodes) {
   const int64_t act_dim = demos.header.act_dim();
   torch::Tensor z = torch::empty({static_cast<int64_t>(episodes.size()), act_dim});
