@@ -92,8 +92,6 @@ Embeddings final_commands(const DemoSet& demos, std::vector<int64_t> episodes) {
   return Embeddings(std::move(episodes), z, "each demonstration's last joint command (joint-space reference, no VAE)");
 }
 
-const vae::LatentPolicy kHoldTheCommandInZ = [](const torch::Tensor&, const torch::Tensor& z) { return z.clone(); };
-
 // Every episode of the experts marked held out, in file order.
 std::vector<int64_t> held_out_episodes(const DemoSet& demos) {
   std::vector<int64_t> out;
@@ -186,7 +184,7 @@ void run_eval_arm(const EvalArmFlags& f) {
     model->eval();
   }
   const auto env = f.joint_blend ? demo_env(demos) : demo_env(demos, model);
-  const auto policy = f.joint_blend    ? kHoldTheCommandInZ
+  const auto policy = f.joint_blend    ? eval::kHoldZAsCommand
                       : f.gail.empty() ? vae::vae_mean_policy(model, device)
                                        : agent_mean_policy(load_gail_agent(f.gail, env->obs_dim(), env->act_dim(),
                                                                            model, device));

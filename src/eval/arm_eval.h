@@ -72,6 +72,10 @@ std::vector<std::pair<int, int>> monotone_by_segment_length(const std::vector<In
 // s and the distance from the line through a and b, for point p (a != b).
 std::pair<double, double> segment_coordinates(const Point3& a, const Point3& b, const Point3& p);
 
+// A policy whose latent is the joint command itself and holds it: with z a demonstration's final
+// command, interpolating z blends poses in joint space (the reference `eval arm --joint-blend`).
+const vae::LatentPolicy kHoldZAsCommand = [](const torch::Tensor&, const torch::Tensor& z) { return z.clone(); };
+
 // Every pair (episodes[i], episodes[j]) listed in `pairs`, rolled out at every alpha.
 std::vector<InterpolationPair> interpolate_reaches(const Env& prototype, const DemoSet& demos,
                                                    const std::vector<std::pair<int64_t, int64_t>>& pairs,

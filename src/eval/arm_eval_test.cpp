@@ -8,9 +8,6 @@
 namespace vaegail::eval {
 namespace {
 
-// A policy whose latent is the joint command itself, so an embedding names an end point.
-const vae::LatentPolicy kCommandIsZ = [](const torch::Tensor&, const torch::Tensor& z) { return z.clone(); };
-
 const std::vector<float> kPoseA = {0.3f, 0.8f, 0.4f, 0, 0, 0, 0, 0, 0};
 const std::vector<float> kPoseB = {-0.5f, 0.5f, 0.9f, 0, 0, 0, 0, 0, 0};
 
@@ -81,7 +78,7 @@ TEST(ArmEval, MonotonePairsCountedBySegmentLength) {
 TEST(ArmEval, ImitationWithTheDemonstratorsCommandEndsWhereTheDemonstrationDid) {
   const ArmEnv env;
   const DemoSet demos = two_reaches(env);
-  const auto rows = imitate_reaches(env, demos, {0, 1}, torch::cat({as_z(kPoseA), as_z(kPoseA)}), kCommandIsZ);
+  const auto rows = imitate_reaches(env, demos, {0, 1}, torch::cat({as_z(kPoseA), as_z(kPoseA)}), kHoldZAsCommand);
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].demo_path.size(), 51u);
   EXPECT_NEAR(rows[0].final_distance(), 0.0, 1e-9);  // same commands, same physics
@@ -97,7 +94,7 @@ TEST(ArmEval, InterpolationEndsAtTheTwoDemonstrationsAndMovesBetweenThem) {
   const ArmEnv env;
   const DemoSet demos = two_reaches(env);
   const auto pairs = interpolate_reaches(env, demos, {{0, 1}}, as_z(kPoseA), as_z(kPoseB),
-                                         {0.0, 0.25, 0.5, 0.75, 1.0}, kCommandIsZ);
+                                         {0.0, 0.25, 0.5, 0.75, 1.0}, kHoldZAsCommand);
   ASSERT_EQ(pairs.size(), 1u);
   const auto& p = pairs[0];
   EXPECT_NEAR(p.along.front(), 0.0, 1e-9);
