@@ -41,7 +41,10 @@ struct VaeConfig {
   // Not in the paper, which encodes whole states. Empty, or the state components the encoder
   // reads (the decoders always see the whole state). The arm's grip position says where a
   // reach ends; its joint angles and velocities also carry each expert's idiosyncratic path,
-  // which tells 50 training experts apart without saying anything about an unseen one.
+  // which tells 50 training experts apart without saying anything about an unseen one. Likewise
+  // the walker's root (height, pitch, root velocities) says how fast it goes, while its joints
+  // carry each expert's gait: an encoder reading them places an unseen expert beside the
+  // training expert of the nearest gait, whatever that one's speed.
   std::vector<int> encoder_state_indices;
 
   // Training. The paper gives no VAE optimiser settings; these are Adam's usual ones.

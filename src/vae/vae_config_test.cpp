@@ -79,6 +79,16 @@ TEST(VaeConfigTest, MissingKeysKeepDefaultsUnknownKeysThrow) {
   EXPECT_THROW(VaeConfig::from_json("not json"), std::invalid_argument);
 }
 
+// configs/walker_vae_root_encoder.json: the encoder reads the walker's root (env/walker.h's layout:
+// 0 height, 1-2 pitch, 9-11 root velocities) and none of its joints (3-8 angles, 12-17 velocities).
+TEST(VaeConfigTest, WalkerRootEncoderConfigReadsNoJoint) {
+  const auto c = VaeConfig::load(std::string(VAEGAIL_SOURCE_DIR) + "/configs/walker_vae_root_encoder.json",
+                                 VaeConfig::walker());
+  EXPECT_EQ(c.encoder_state_indices, (std::vector<int>{0, 1, 2, 9, 10, 11}));
+  EXPECT_FALSE(c.action_std_depends_on_state);
+  EXPECT_EQ(c.kl_weight, 1.0);
+}
+
 TEST(VaeConfigTest, SaveAndLoadFile) {
   const auto path = (std::filesystem::temp_directory_path() /
                      ("vae_config_test_" + std::to_string(::getpid()) + ".json"))
