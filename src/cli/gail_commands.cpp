@@ -61,6 +61,7 @@ void run_gail(GailFlags f) {
   std::fflush(stdout);
   Progress progress("gail " + f.mode, f.options.iterations, "it");
   progress.resume(trainer.iteration());
+  if (f.options.minutes > 0) progress.set_time_budget(60 * f.options.minutes);
   trainer.train([&](const GailMetrics& m) {
     char status[160];
     std::snprintf(status, sizeof status, "D acc %.2f/%.2f  reward %.2f  return %.1f  speed err %.2f  falls %.2f",

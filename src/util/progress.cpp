@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace vaegail {
@@ -35,6 +36,14 @@ void Progress::resume(std::int64_t done) {
 
 void Progress::set_status(std::string status) { status_ = std::move(status); }
 
+void Progress::set_time_budget(double seconds) { time_budget_ = seconds; }
+
+double Progress::eta_seconds(std::int64_t left, double rate, double budget_left) {
+  const double by_work = rate > 0 ? left / rate : -1;
+  if (budget_left < 0) return by_work;
+  return by_work < 0 ? budget_left : std::min(by_work, budget_left);
+}
+
 void Progress::finish() {
   if (finished_) return;
   finished_ = true;
@@ -57,7 +66,8 @@ void Progress::draw(bool final) {
   last_draw_ = now;
   const double elapsed = seconds_between(start_, now);
   const double rate = elapsed > 0 ? (done_ - start_done_) / elapsed : 0;
-  const double eta = rate > 0 ? (total_ - done_) / rate : -1;
+  const double eta =
+      eta_seconds(total_ - done_, rate, time_budget_ < 0 ? -1 : std::max(0.0, time_budget_ - elapsed));
   const double frac = total_ > 0 ? static_cast<double>(done_) / total_ : 0;
   const int width = 24;
   std::string bar(width, ' ');

@@ -21,15 +21,22 @@ class Progress {
   void resume(std::int64_t done);
   // Short text shown after the rate, e.g. "loss 1.23".
   void set_status(std::string status);
+  // A job that also stops after `seconds` of wall-clock time (e.g. `gail train --minutes`): the
+  // ETA is then whichever comes first, the work or the budget, not the work alone.
+  void set_time_budget(double seconds);
   void finish();
 
   static std::string format_duration(double seconds);
+  // Seconds left: `left` units at `rate` units/s, capped by `budget_left` seconds when that is
+  // >= 0; -1 when neither bounds it (no rate yet and no budget).
+  static double eta_seconds(std::int64_t left, double rate, double budget_left);
 
  private:
   void draw(bool final);
 
   std::string label_, unit_, status_;
   std::int64_t total_, done_ = 0, start_done_ = 0;
+  double time_budget_ = -1;  // seconds from start_; < 0: none
   std::chrono::steady_clock::time_point start_, last_draw_;
   bool tty_, finished_ = false;
 };
