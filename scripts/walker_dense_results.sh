@@ -1,22 +1,18 @@
 #!/usr/bin/env bash
 # Issue 4's bar on the dense walker set: the embedding space of a VAE trained on it.
-# Usage: scripts/walker_dense_results.sh [OUT_DIR [RUN_DIR]]   (defaults results/walker/dense and
-# checkpoints/walker/vae_dense; about 4 minutes on 2 cores, plus 30 s to regenerate
-# data/walker/demos_dense.h5 from the committed experts)
+# Usage: scripts/walker_dense_results.sh [OUT_DIR [RUN_DIR [SET]]]   (defaults results/walker/dense,
+# checkpoints/walker/vae_dense and the dense set; about 4 minutes on 2 cores, plus 30 s to regenerate
+# data/walker/demos_SET.h5 from the committed experts with scripts/walker_demos.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/walker/dense}
 v=build/vaegail
-demos=data/walker/demos_dense.h5
 run=${2:-checkpoints/walker/vae_dense}
+set_name=${3:-dense}
+demos=data/walker/demos_$set_name.h5
 mkdir -p "$out"
 
-if [ ! -f $demos ]; then
-  $v demos collect --experts-dir experts/walker experts/walker_dense experts/walker_context \
-      --passing experts/walker/eval.json experts/walker_dense/eval.json experts/walker_context/eval.json \
-      --out $demos --episodes-per-expert 20 \
-      --held-out speed-1_logstd-1_seed3 speed0_logstd-1_seed3 speed1_logstd-1_seed3
-fi
+[ -f "$demos" ] || scripts/walker_demos.sh "$set_name"
 $v data info $demos --histogram "$out/speeds.png" > "$out/data_info.txt"
 $v vae embed --checkpoint "$run"/checkpoints/latest.pt --demos $demos --out "$out/embeddings.csv"
 $v vae knn --embeddings "$out/embeddings.csv" --k 5 | tee "$out/knn.txt"
