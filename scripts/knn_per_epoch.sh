@@ -17,7 +17,7 @@ echo "epoch,correct,total,per_target,loo_correct,loo_total,loo_experts_correct,l
 # "  experts with most of their rows correct: 3 / 3"; awk prints correct,total,per_target,experts_correct,experts
 summary='
   /^k-NN/ { split($0, a, ": "); split(a[2], b, " "); c = b[1]; t = b[3] }
-  /target/ { sub(/^ +/, ""); p = p (p ? "; " : "") $1 " " $2 " " $3 "/" $5 }
+  /^  target/ { sub(/^ +/, ""); p = p (p ? "; " : "") $1 " " $2 " " $3 "/" $5 }
   /experts with/ { n = split($0, a, " "); x = a[n - 2]; y = a[n] }
   END { printf "%s,%s,%s,%s,%s\n", c, t, p, x, y }'
 

@@ -186,15 +186,17 @@ void add_knn(CLI::App& vae) {
   auto path = std::make_shared<std::string>();
   auto k = std::make_shared<int>(5);
   auto leave_one_out = std::make_shared<bool>(false);
+  auto by_expert = std::make_shared<bool>(false);
   CLI::App* c = vae.add_subcommand("knn", "classify held-out embeddings by a k-NN vote of the training ones' target");
   c->add_option("--embeddings", *path, "CSV from `vaegail vae embed`")->required();
   c->add_option("--k", *k, "neighbours")->check(CLI::Range(1, 1 << 20))->capture_default_str();
   c->add_flag("--leave-one-expert-out", *leave_one_out,
               "instead classify every training expert's embeddings against the other training experts'");
-  c->callback([path, k, leave_one_out] {
+  c->add_flag("--by-expert", *by_expert, "also a line per classified expert: its score and its nearest experts");
+  c->callback([path, k, leave_one_out, by_expert] {
     const auto rows = vae::parse_embedding_csv(read_file(*path), *path);
     const auto result = *leave_one_out ? vae::knn_classify_leave_one_expert_out(rows, *k) : vae::knn_classify(rows, *k);
-    std::fputs(vae::format_knn(result).c_str(), stdout);
+    std::fputs(vae::format_knn(result, *by_expert).c_str(), stdout);
   });
 }
 

@@ -92,20 +92,28 @@ std::vector<EmbeddingRow> parse_embedding_csv(const std::string& text, const std
 
 namespace {
 
-// The context most common among the k rows of `pool` nearest to `query` (Euclidean on mu);
-// a tied vote goes to the tied context with the nearest member.
-double vote(const EmbeddingRow& query, const std::vector<const EmbeddingRow*>& pool, int k) {
+// The k rows of `pool` nearest to `query` (Euclidean on mu), nearest first.
+std::vector<const EmbeddingRow*> nearest(const EmbeddingRow& query, const std::vector<const EmbeddingRow*>& pool,
+                                         int k) {
   std::vector<std::pair<double, const EmbeddingRow*>> by_distance;
   for (const auto* t : pool) by_distance.push_back({squared_distance(query.mu, t->mu), t});
   k = std::min<int>(k, static_cast<int>(by_distance.size()));
   std::partial_sort(by_distance.begin(), by_distance.begin() + k, by_distance.end(),
                     [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<const EmbeddingRow*> out;
+  for (int i = 0; i < k; ++i) out.push_back(by_distance[i].second);
+  return out;
+}
+
+// The context most common among `neighbours` (nearest first); a tied vote goes to the tied
+// context with the nearest member.
+double vote(const std::vector<const EmbeddingRow*>& neighbours) {
   std::map<double, int> votes;
-  for (int i = 0; i < k; ++i) ++votes[by_distance[i].second->context];
+  for (const auto* n : neighbours) ++votes[n->context];
   int best_votes = 0;
   for (const auto& [context, n] : votes) best_votes = std::max(best_votes, n);
-  for (int i = 0; i < k; ++i)  // nearest first: the first tied winner met wins
-    if (votes[by_distance[i].second->context] == best_votes) return by_distance[i].second->context;
+  for (const auto* n : neighbours)  // nearest first: the first tied winner met wins
+    if (votes[n->context] == best_votes) return n->context;
   return 0;  // unreachable: k >= 1 and the pool is not empty
 }
 
@@ -115,22 +123,24 @@ KnnResult tally(const std::vector<const EmbeddingRow*>& queries, int k, PoolFor 
   if (k < 1) throw std::invalid_argument("knn: k must be >= 1");
   KnnResult result;
   result.k = k;
-  std::map<std::string, std::pair<int, int>> per_expert;  // (correct, total)
   for (const auto* q : queries) {
     const auto& pool = pool_for(*q);
     result.k = std::min<int>(result.k, static_cast<int>(pool.size()));
-    const bool hit = vote(*q, pool, k) == q->context;
+    const auto neighbours = nearest(*q, pool, k);
+    const bool hit = vote(neighbours) == q->context;
     result.total += 1;
     result.correct += hit;
     auto& target = result.per_target[q->context];
     target.first += hit;
     target.second += 1;
-    auto& expert = per_expert[q->expert_id];
-    expert.first += hit;
-    expert.second += 1;
+    auto& expert = result.per_expert[q->expert_id];
+    expert.contexts.insert(q->context);
+    expert.correct += hit;
+    expert.total += 1;
+    for (const auto* n : neighbours) ++expert.neighbours[n->expert_id];
   }
-  result.experts = static_cast<int>(per_expert.size());
-  for (const auto& [id, ct] : per_expert) result.experts_majority_correct += 2 * ct.first > ct.second;
+  result.experts = static_cast<int>(result.per_expert.size());
+  for (const auto& [id, e] : result.per_expert) result.experts_majority_correct += 2 * e.correct > e.total;
   return result;
 }
 
@@ -166,7 +176,26 @@ KnnResult knn_classify_leave_one_expert_out(const std::vector<EmbeddingRow>& row
   return result;
 }
 
-std::string format_knn(const KnnResult& r) {
+namespace {
+
+// "  expert ID (target T): C / N; nearest: A 40, B 12, C 8" with the three most frequent
+// neighbours; "targets -1/0/1" for a context-conditioned expert.
+std::string expert_line(const std::string& id, const ExpertVote& e) {
+  std::vector<std::pair<int, std::string>> by_count;
+  for (const auto& [neighbour, n] : e.neighbours) by_count.push_back({-n, neighbour});
+  std::sort(by_count.begin(), by_count.end());
+  std::string targets;
+  for (double c : e.contexts) targets += (targets.empty() ? "" : "/") + number(c);
+  std::string line = "  expert " + id + (e.contexts.size() > 1 ? " (targets " : " (target ") + targets +
+                     "): " + std::to_string(e.correct) + " / " + std::to_string(e.total) + "; nearest:";
+  for (size_t i = 0; i < std::min<size_t>(3, by_count.size()); ++i)
+    line += (i ? ", " : " ") + by_count[i].second + " " + std::to_string(-by_count[i].first);
+  return line + "\n";
+}
+
+}  // namespace
+
+std::string format_knn(const KnnResult& r, bool by_expert) {
   char buf[160];
   std::snprintf(buf, sizeof buf, "k-NN (k = %d) on %s: %d / %d = %.1f%%%s\n", r.k,
                 r.leave_one_expert_out ? "training embeddings, each expert left out in turn" : "held-out embeddings",
@@ -179,7 +208,10 @@ std::string format_knn(const KnnResult& r) {
   }
   std::snprintf(buf, sizeof buf, "  experts with most of their rows correct: %d / %d\n", r.experts_majority_correct,
                 r.experts);
-  return out + buf;
+  out += buf;
+  if (by_expert)
+    for (const auto& [id, e] : r.per_expert) out += expert_line(id, e);
+  return out;
 }
 
 }  // namespace vaegail::vae

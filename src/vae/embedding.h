@@ -9,6 +9,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,14 @@ std::string embedding_csv(const std::vector<EmbeddingRow>& rows);
 // Throws std::invalid_argument "where: line N: problem" on a malformed file.
 std::vector<EmbeddingRow> parse_embedding_csv(const std::string& text, const std::string& where);
 
+// One classified expert: how many of its rows were voted right, and whose rows were their
+// nearest (expert id -> how often among the k nearest of its rows).
+struct ExpertVote {
+  std::set<double> contexts;  // more than one for a context-conditioned expert
+  int correct = 0, total = 0;
+  std::map<std::string, int> neighbours;
+};
+
 struct KnnResult {
   bool leave_one_expert_out = false;  // false: the held-out rows against the training rows
   int k = 0;  // the k asked for, or the fewest rows a query's pool held if that was fewer
@@ -35,6 +44,7 @@ struct KnnResult {
   std::map<double, std::pair<int, int>> per_target;  // context -> (correct, total)
   // Experts whose rows were classified, and those with more than half of them correct.
   int experts = 0, experts_majority_correct = 0;
+  std::map<std::string, ExpertVote> per_expert;
   double accuracy() const { return total ? static_cast<double>(correct) / total : 0.0; }
 };
 
@@ -47,6 +57,8 @@ KnnResult knn_classify(const std::vector<EmbeddingRow>& rows, int k);
 // the held-out vote has a few outcomes that matter; this one has one per training expert.
 // Throws std::invalid_argument with fewer than two training experts.
 KnnResult knn_classify_leave_one_expert_out(const std::vector<EmbeddingRow>& rows, int k);
-std::string format_knn(const KnnResult& result);
+// by_expert adds a line per classified expert: its score and the experts nearest to it,
+// which names the training expert a wrongly voted held-out expert was taken for.
+std::string format_knn(const KnnResult& result, bool by_expert = false);
 
 }  // namespace vaegail::vae

@@ -111,6 +111,10 @@ TEST(EmbeddingTest, LeaveOneExpertOutVotesWithoutTheExpertsOwnRows) {
   EXPECT_EQ(result.experts_majority_correct, 2);
   EXPECT_EQ(result.per_target.at(2.0), (std::pair<int, int>{0, 2}));
   EXPECT_NE(format_knn(result).find("each expert left out"), std::string::npos);
+  EXPECT_EQ(result.per_expert.at("a").neighbours, (std::map<std::string, int>{{"b", 2}}));
+  EXPECT_NE(format_knn(result, true).find("  expert a (target 1): 0 / 2; nearest: b 2\n"), std::string::npos)
+      << format_knn(result, true);
+  EXPECT_EQ(format_knn(result).find("  expert a"), std::string::npos);
   EXPECT_THROW(knn_classify_leave_one_expert_out({at("a", 1, 0), at("a", 1, 1)}, 1), std::invalid_argument);
 }
 
