@@ -85,6 +85,12 @@ std::vector<EmbeddingRow> parse_embedding_csv(const std::string& text, const std
     } catch (const std::exception&) {
       throw std::invalid_argument(at + "a cell is not a number");
     }
+    // context and achieved speed may be nan (a task without them); a nan in z would silently
+    // drop out of every distance comparison.
+    for (size_t j = 0; j < latent; ++j)
+      if (!std::isfinite(r.mu[j]) || !std::isfinite(r.sigma[j]))
+        throw std::invalid_argument(at + (std::isfinite(r.mu[j]) ? "sigma_" : "mu_") + std::to_string(j) +
+                                    " is not finite");
     rows.push_back(std::move(r));
   }
   return rows;

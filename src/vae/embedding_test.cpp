@@ -52,6 +52,13 @@ TEST(EmbeddingTest, MalformedCsvNamesTheLine) {
     EXPECT_NE(std::string(e.what()).find("x.csv: line 3"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parse_embedding_csv(good + "1,e1,0\n", "x.csv"), std::invalid_argument);
+  try {
+    parse_embedding_csv(good + "1,e1,nan,nan,0,0.5,nan\n", "x.csv");  // nan labels pass, a nan sigma not
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("x.csv: line 3: sigma_0 is not finite"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(parse_embedding_csv(good + "1,e1,nan,nan,0,0.5,1\n", "x.csv").size(), 2u);
 }
 
 // Four targets, each a Gaussian blob in 3-d; held-out rows drawn from the same blobs.

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# The command line's promises, checked on the built binary (ctest runs this as `cli_test`):
+# every command and subcommand answers --help; bad input (a missing, random or truncated file,
+# a malformed CSV, a nan, wrong dimensions, an unknown flag) ends with a non-zero exit, one
+# line on stderr naming the problem, and no output file.
+# Usage: src/cli/cli_test.sh VAEGAIL_BINARY REPO_ROOT
+set -uo pipefail
+[ $# -eq 2 ] || { echo "usage: $0 VAEGAIL_BINARY REPO_ROOT" >&2; exit 2; }
+v=$1 root=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# ---- --help on every command ----------------------------------------------------------
+helped=0
+check_help() {
+  local help
+  help=$("$v" "$@" --help 2>&1) && grep -q '^Usage:' <<< "$help" || fail "vaegail $* --help"
+  helped=$((helped + 1))
+  for s in $(sed -n '/^Subcommands:/,$p' <<< "$help" | awk 'NR > 1 && NF { print $1 }'); do check_help "$@" "$s"; done
+}
+check_help
+[ "$helped" -ge 25 ] || fail "only $helped commands answered --help (expected every subcommand, 25 or more)"
+
+# ---- bad input ------------------------------------------------------------------------
+# expect_error WHAT_STDERR_MUST_CONTAIN OUTPUT_THAT_MUST_NOT_EXIST -- COMMAND...
+expect_error() {
+  local needle=$1 output=$2
+  shift 3
+  "$v" "$@" > "$tmp/stdout" 2> "$tmp/stderr"
+  local rc=$? lines
+  lines=$(grep -c . "$tmp/stderr")
+  if [ $rc -eq 0 ]; then fail "vaegail $*: exit 0"
+  elif ! grep -qF -- "$needle" "$tmp/stderr"; then fail "vaegail $*: stderr lacks '$needle': $(cat "$tmp/stderr")"
+  elif [ "$lines" -ne 1 ] && ! grep -q '^Run with --help' "$tmp/stderr"; then fail "vaegail $*: $lines lines on stderr"
+  elif [ -n "$output" ] && [ -e "$output" ]; then fail "vaegail $*: left $output behind"
+  fi
+}
+
+walker_demos=$root/data/walker/demos.h5 walker_vae=$root/checkpoints/walker/vae/checkpoints/latest.pt
+head -c 4096 /dev/urandom > "$tmp/random.h5"
+head -c 1000000 "$walker_demos" > "$tmp/truncated.h5"
+printf 'episode,expert_id\n0,a\n' > "$tmp/header.csv"
+printf 'episode,expert_id,context,achieved_speed,held_out,mu_0,sigma_0\n0,a,1,1,1,nan,0.1\n' > "$tmp/nan.csv"
+out=$tmp/out.csv
+
+expect_error "missing.h5" "" -- data info "$tmp/missing.h5"
+expect_error "random.h5: not an HDF5 file" "" -- data info "$tmp/random.h5"
+expect_error "truncated.h5" "" -- data info "$tmp/truncated.h5"
+expect_error "missing.csv" "" -- vae knn --embeddings "$tmp/missing.csv"
+expect_error "header.csv: line 1" "" -- vae knn --embeddings "$tmp/header.csv"
+expect_error "nan.csv: line 2: mu_0 is not finite" "" -- vae knn --embeddings "$tmp/nan.csv"
+expect_error "missing.pt" "$out" -- vae embed --checkpoint "$tmp/missing.pt" --demos "$walker_demos" --out "$out"
+expect_error "truncated.h5" "$out" -- vae embed --checkpoint "$walker_vae" --demos "$tmp/truncated.h5" --out "$out"
+expect_error "21/9 components, the checkpoint's VAE 18/6" "$out" -- \
+  vae embed --checkpoint "$walker_vae" --demos "$root/data/arm/demos.h5" --out "$out"
+expect_error "--bogus" "$tmp/run" -- vae train --demos "$walker_demos" --run-dir "$tmp/run" --bogus
+expect_error "--k" "" -- vae knn --embeddings "$tmp/nan.csv" --k 0
+
+echo "$helped commands answered --help; $failures failure(s)"
+[ "$failures" -eq 0 ]
