@@ -1,17 +1,21 @@
 #!/usr/bin/env bash
 # The walker demonstration sets of issue 4, rolled out from the committed experts (mean actions).
-# Usage: scripts/walker_demos.sh dense|denser [OUT.h5 [HELD_OUT_ID...]]
-#   dense:  experts/walker + walker_dense + walker_context, 20 episodes per passing expert (33 experts, 30 s)
-#   denser: the same + experts/walker_denser, 12 episodes per passing expert (56 experts, 25 s)
+# Usage: scripts/walker_demos.sh dense|denser|densest [OUT.h5 [HELD_OUT_ID...]]
+#   dense:   experts/walker + walker_dense + walker_context, 20 episodes per passing expert (33 experts, 30 s)
+#   denser:  the same + experts/walker_denser, 12 episodes per passing expert (56 experts, 25 s)
+#   densest: the same + experts/walker_densest, 8 episodes per passing expert (about as many episodes as
+#            denser from more experts)
 # OUT.h5 defaults to data/walker/demos_SET.h5; the held-out experts default to the published three.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ $# -ge 1 ] || { echo "usage: $0 dense|denser [OUT.h5 [HELD_OUT_ID...]]" >&2; exit 2; }
+[ $# -ge 1 ] || { echo "usage: $0 dense|denser|densest [OUT.h5 [HELD_OUT_ID...]]" >&2; exit 2; }
 set_name=$1
 case $set_name in
   dense) dirs="experts/walker experts/walker_dense experts/walker_context"; episodes=20 ;;
   denser) dirs="experts/walker experts/walker_dense experts/walker_denser experts/walker_context"; episodes=12 ;;
-  *) echo "$0: unknown set '$set_name' (dense or denser)" >&2; exit 2 ;;
+  densest) dirs="experts/walker experts/walker_dense experts/walker_denser experts/walker_densest experts/walker_context"
+    episodes=8 ;;
+  *) echo "$0: unknown set '$set_name' (dense, denser or densest)" >&2; exit 2 ;;
 esac
 out=${2:-data/walker/demos_$set_name.h5}
 shift $(( $# >= 2 ? 2 : 1 ))
