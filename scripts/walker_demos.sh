@@ -10,13 +10,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -ge 1 ] || { echo "usage: $0 dense|denser|densest [OUT.h5 [HELD_OUT_ID...]]" >&2; exit 2; }
 set_name=$1
+# The order of the directories fixes each episode's seed, so new ones go before walker_context.
 case $set_name in
-  dense) dirs="experts/walker experts/walker_dense experts/walker_context"; episodes=20 ;;
-  denser) dirs="experts/walker experts/walker_dense experts/walker_denser experts/walker_context"; episodes=12 ;;
-  densest) dirs="experts/walker experts/walker_dense experts/walker_denser experts/walker_densest experts/walker_context"
-    episodes=8 ;;
+  dense) more=""; episodes=20 ;;
+  denser) more="experts/walker_denser"; episodes=12 ;;
+  densest) more="experts/walker_denser experts/walker_densest"; episodes=8 ;;
   *) echo "$0: unknown set '$set_name' (dense, denser or densest)" >&2; exit 2 ;;
 esac
+dirs="experts/walker experts/walker_dense $more experts/walker_context"
 out=${2:-data/walker/demos_$set_name.h5}
 shift $(( $# >= 2 ? 2 : 1 ))
 held_out=${*:-speed-1_logstd-1_seed3 speed0_logstd-1_seed3 speed1_logstd-1_seed3}
