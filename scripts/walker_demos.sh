@@ -1,21 +1,23 @@
 #!/usr/bin/env bash
 # The walker demonstration sets of issue 4, rolled out from the committed experts (mean actions).
-# Usage: scripts/walker_demos.sh dense|denser|densest [OUT.h5 [HELD_OUT_ID...]]
+# Usage: scripts/walker_demos.sh dense|denser|densest|paper [OUT.h5 [HELD_OUT_ID...]]
 #   dense:   experts/walker + walker_dense + walker_context, 20 episodes per passing expert (33 experts, 30 s)
 #   denser:  the same + experts/walker_denser, 12 episodes per passing expert (56 experts, 25 s)
 #   densest: the same + experts/walker_densest, 8 episodes per passing expert (about as many episodes as
 #            denser from more experts)
+#   paper:   the densest set's experts, 16 episodes each (77 x 16 = 1232, the paper's scale of about 1200)
 # OUT.h5 defaults to data/walker/demos_SET.h5; the held-out experts default to the published three.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ $# -ge 1 ] || { echo "usage: $0 dense|denser|densest [OUT.h5 [HELD_OUT_ID...]]" >&2; exit 2; }
+[ $# -ge 1 ] || { echo "usage: $0 dense|denser|densest|paper [OUT.h5 [HELD_OUT_ID...]]" >&2; exit 2; }
 set_name=$1
 # The order of the directories fixes each episode's seed, so new ones go before walker_context.
 case $set_name in
   dense) more=""; episodes=20 ;;
   denser) more="experts/walker_denser"; episodes=12 ;;
   densest) more="experts/walker_denser experts/walker_densest"; episodes=8 ;;
-  *) echo "$0: unknown set '$set_name' (dense, denser or densest)" >&2; exit 2 ;;
+  paper) more="experts/walker_denser experts/walker_densest"; episodes=16 ;;
+  *) echo "$0: unknown set '$set_name' (dense, denser, densest or paper)" >&2; exit 2 ;;
 esac
 dirs="experts/walker experts/walker_dense $more experts/walker_context"
 out=${2:-data/walker/demos_$set_name.h5}
