@@ -65,17 +65,8 @@ Embeddings encoded(vae::TrajectoryVae& model, const DemoSet& demos, std::vector<
   torch::Tensor z = vae::encode_episodes(model, demos, episodes);
   if (refine.steps == 0) return Embeddings(std::move(episodes), z, "the encoder's mean");
   const auto data = vae::to_trajectory_dataset(demos, episodes, model->config());
-  const double before = vae::latent_objective(model, data, z).mean().item<double>();
-  Progress progress("refine z", static_cast<std::int64_t>(episodes.size()), "demos");
-  z = vae::refine_latents(model, data, z, refine, &progress);
-  progress.finish();
-  const double after = vae::latent_objective(model, data, z).mean().item<double>();
-  char text[300];
-  std::snprintf(text, sizeof text,
-                "the encoder's mean refined by %d Adam steps (lr %g) towards the mode of p(z | demonstration); "
-                "-log p(demonstration, z) per demonstration %.1f at the encoder's mean, %.1f refined",
-                refine.steps, refine.learning_rate, before, after);
-  return Embeddings(std::move(episodes), z, text);
+  auto refined = vae::refine_with_report(model, data, z, refine);
+  return Embeddings(std::move(episodes), refined.z, refined.description);
 }
 
 // The reference without a VAE: an episode's "embedding" is the last joint command it recorded,

@@ -19,6 +19,7 @@
 #include "vae/demo_dataset.h"
 #include "vae/embedding.h"
 #include "vae/imitation.h"
+#include "vae/latent_refinement.h"
 #include "vae/vae_bench.h"
 #include "vae/vae_trainer.h"
 
@@ -151,17 +152,47 @@ void add_train(CLI::App& vae) {
 }
 
 // ---- vae embed ------------------------------------------------------------------------
+struct EmbedFlags : ModelFlags {
+  std::string out;
+  vae::RefineOptions refine{0, 0.05, 64};
+  bool refine_all = false;
+};
+
+// The held-out (or all) rows' mu moved towards the mode of p(z | demonstration). Held-out rows by
+// default: they are the k-NN test's queries, and whether the vote changes when they sit where the
+// decoders explain them best says if a miss is the encoder's or the embedding space's. sigma stays
+// the encoder's.
+torch::Tensor refine_rows(TrajectoryVae& model, const DemoSet& demos, torch::Tensor mu, const EmbedFlags& f) {
+  std::vector<int64_t> rows;
+  for (int64_t i = 0; i < static_cast<int64_t>(demos.episodes.size()); ++i)
+    if (f.refine_all || vae::is_held_out(demos.episodes[i])) rows.push_back(i);
+  if (rows.empty()) throw std::invalid_argument(demos.path + ": no held-out demonstrations to refine (--refine-all?)");
+  const auto index = torch::tensor(rows);
+  const auto data = vae::to_trajectory_dataset(demos, rows, model->config());
+  const auto refined = vae::refine_with_report(model, data, mu.index_select(0, index), f.refine);
+  std::printf("%zu demonstrations: %s\n", rows.size(), refined.description.c_str());
+  return mu.index_copy(0, index, refined.z.to(mu.dtype()));
+}
+
 void add_embed(CLI::App& vae) {
-  auto f = std::make_shared<ModelFlags>();
-  auto out = std::make_shared<std::string>();
+  auto f = std::make_shared<EmbedFlags>();
   CLI::App* c = vae.add_subcommand("embed", "one CSV row per demonstration: its labels and q(z | x) = N(mu, sigma)");
   add_model_flags(*c, *f);
-  c->add_option("--out", *out, "CSV: episode,expert_id,context,achieved_speed,held_out,mu_*,sigma_*")->required();
-  c->callback([f, out] {
+  c->add_option("--out", f->out, "CSV: episode,expert_id,context,achieved_speed,held_out,mu_*,sigma_*")->required();
+  c->add_option("--refine-steps", f->refine.steps,
+                "Adam steps moving the held-out demonstrations' mu from the encoder's mean towards the mode of "
+                "p(z | demonstration) under the decoders (0: the encoder's mean, as the paper)")
+      ->check(CLI::Range(0, 100000))->capture_default_str();
+  c->add_option("--refine-lr", f->refine.learning_rate, "Adam's learning rate for --refine-steps")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_flag("--refine-all", f->refine_all, "with --refine-steps, refine every demonstration's mu");
+  c->callback([f] {
     torch::NoGradGuard no_grad;
     auto l = load(*f);
     torch::Tensor sigma;
-    const auto mu = encode_with_progress(l.model, l.demos, all_episodes(l.demos), &sigma).to(torch::kDouble);
+    auto mu = encode_with_progress(l.model, l.demos, all_episodes(l.demos), &sigma);
+    if (f->refine.steps > 0) mu = refine_rows(l.model, l.demos, mu, *f);
+    mu = mu.to(torch::kDouble);
     sigma = sigma.to(torch::kDouble);
     std::vector<vae::EmbeddingRow> rows;
     for (int i = 0; i < static_cast<int>(l.demos.episodes.size()); ++i) {
@@ -176,8 +207,8 @@ void add_embed(CLI::App& vae) {
       r.sigma.assign(sigma[i].data_ptr<double>(), sigma[i].data_ptr<double>() + sigma.size(1));
       rows.push_back(std::move(r));
     }
-    write_file_atomically(*out, vae::embedding_csv(rows));
-    std::printf("%zu embeddings (z %lld) -> %s\n", rows.size(), static_cast<long long>(mu.size(1)), out->c_str());
+    write_file_atomically(f->out, vae::embedding_csv(rows));
+    std::printf("%zu embeddings (z %lld) -> %s\n", rows.size(), static_cast<long long>(mu.size(1)), f->out.c_str());
   });
 }
 

@@ -153,7 +153,7 @@ class CountingEnv : public ClonableToyEnv<CountingEnv> {
 class PointMassTask {
  public:
   explicit PointMassTask(std::uint64_t seed)
-      : agent_(Agent::make_gaussian(options())),
+      : agent_(seeded_agent(seed)),
         envs_(PointMassEnv(), 8),
         targets_(seed),
         collector_(envs_, agent_, seed, [this](int, Env& env) {
@@ -178,6 +178,13 @@ class PointMassTask {
   }
 
  private:
+  // The initial weights come from torch's global generator: seeded here, so that a run is fixed
+  // by `seed` alone rather than by whatever the process drew before.
+  static std::shared_ptr<Agent> seeded_agent(std::uint64_t seed) {
+    torch::manual_seed(seed);
+    return Agent::make_gaussian(options());
+  }
+
   static AgentOptions options() {
     AgentOptions o;
     o.obs_dim = 2;

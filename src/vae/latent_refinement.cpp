@@ -1,5 +1,6 @@
 #include "vae/latent_refinement.h"
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -53,6 +54,23 @@ torch::Tensor refine_latents(TrajectoryVae& model, const TrajectoryDataset& data
     if (progress) progress->advance(n);
   }
   return torch::cat(refined);
+}
+
+RefinedLatents refine_with_report(TrajectoryVae& model, const TrajectoryDataset& data, const torch::Tensor& start,
+                                  const RefineOptions& options) {
+  RefinedLatents r;
+  r.objective_before = latent_objective(model, data, start).mean().item<double>();
+  Progress progress("refine z", data.size(), "demos");
+  r.z = refine_latents(model, data, start, options, &progress);
+  progress.finish();
+  r.objective_after = latent_objective(model, data, r.z).mean().item<double>();
+  char text[300];
+  std::snprintf(text, sizeof text,
+                "the encoder's mean refined by %d Adam steps (lr %g) towards the mode of p(z | demonstration); "
+                "-log p(demonstration, z) per demonstration %.1f at the encoder's mean, %.1f refined",
+                options.steps, options.learning_rate, r.objective_before, r.objective_after);
+  r.description = text;
+  return r;
 }
 
 }  // namespace vaegail::vae

@@ -12,6 +12,8 @@
 
 #include <torch/torch.h>
 
+#include <string>
+
 #include "util/progress.h"
 #include "vae/trajectory_vae.h"
 #include "vae/vae_trainer.h"
@@ -31,5 +33,15 @@ torch::Tensor latent_objective(TrajectoryVae& model, const TrajectoryDataset& da
 // advances by one per demonstration.
 torch::Tensor refine_latents(TrajectoryVae& model, const TrajectoryDataset& data, const torch::Tensor& start,
                              const RefineOptions& options = {}, Progress* progress = nullptr);
+
+// refine_latents behind a progress bar, with the objective's mean over the demonstrations before
+// and after, which say whether the search found anything the encoder missed.
+struct RefinedLatents {
+  torch::Tensor z;
+  double objective_before = 0, objective_after = 0;
+  std::string description;  // one line: the steps, the rate and the two means
+};
+RefinedLatents refine_with_report(TrajectoryVae& model, const TrajectoryDataset& data, const torch::Tensor& start,
+                                  const RefineOptions& options);
 
 }  // namespace vaegail::vae

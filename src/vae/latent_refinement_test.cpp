@@ -40,6 +40,16 @@ TEST(LatentRefinementTest, LowersEveryDemonstrationsObjective) {
   EXPECT_TRUE(torch::equal(refine_latents(f.vae, f.data, f.start, {0, 0.05, 64}), f.start));
 }
 
+TEST(LatentRefinementTest, ReportIsTheMeanObjectiveBeforeAndAfter) {
+  auto f = fixture();
+  const auto r = refine_with_report(f.vae, f.data, f.start, {10, 0.05, 64});
+  EXPECT_TRUE(torch::equal(r.z, refine_latents(f.vae, f.data, f.start, {10, 0.05, 64})));
+  EXPECT_NEAR(r.objective_before, latent_objective(f.vae, f.data, f.start).mean().item<double>(), 1e-6);
+  EXPECT_NEAR(r.objective_after, latent_objective(f.vae, f.data, r.z).mean().item<double>(), 1e-6);
+  EXPECT_LT(r.objective_after, r.objective_before);
+  EXPECT_NE(r.description.find("10 Adam steps"), std::string::npos) << r.description;
+}
+
 TEST(LatentRefinementTest, EachDemonstrationMovesOnItsOwn) {
   auto f = fixture();
   const auto together = refine_latents(f.vae, f.data, f.start, {20, 0.05, 64});
