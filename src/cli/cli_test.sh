@@ -58,5 +58,15 @@ expect_error "21/9 components, the checkpoint's VAE 18/6" "$out" -- \
 expect_error "--bogus" "$tmp/run" -- vae train --demos "$walker_demos" --run-dir "$tmp/run" --bogus
 expect_error "--k" "" -- vae knn --embeddings "$tmp/nan.csv" --k 0
 
+# One training-expert episode: nothing held out for `vae embed --refine-steps` unless --refine-all.
+"$v" demos collect --experts-dir "$root/experts/walker" --only speed-1_logstd-1_seed0 --episodes-per-expert 1 \
+  --out "$tmp/one.h5" > /dev/null 2>&1 ||
+  fail "demos collect --only speed-1_logstd-1_seed0"
+expect_error "one.h5: no held-out demonstrations to refine" "$out" -- \
+  vae embed --checkpoint "$walker_vae" --demos "$tmp/one.h5" --out "$out" --refine-steps 1
+"$v" vae embed --checkpoint "$walker_vae" --demos "$tmp/one.h5" --out "$out" --refine-steps 1 --refine-all \
+  > "$tmp/stdout" 2>&1 && grep -q "refined by 1 Adam steps" "$tmp/stdout" && [ -s "$out" ] ||
+  fail "vae embed --refine-steps 1 --refine-all: $(tail -1 "$tmp/stdout")"
+
 echo "$helped commands answered --help; $failures failure(s)"
 [ "$failures" -eq 0 ]

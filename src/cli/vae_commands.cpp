@@ -158,18 +158,23 @@ struct EmbedFlags : ModelFlags {
   bool refine_all = false;
 };
 
-// The held-out (or all) rows' mu moved towards the mode of p(z | demonstration). Held-out rows by
-// default: they are the k-NN test's queries, and whether the vote changes when they sit where the
-// decoders explain them best says if a miss is the encoder's or the embedding space's. sigma stays
-// the encoder's.
-torch::Tensor refine_rows(TrajectoryVae& model, const DemoSet& demos, torch::Tensor mu, const EmbedFlags& f) {
+// The rows whose mu --refine-steps moves: the held-out ones by default, since they are the k-NN
+// test's queries, and whether the vote changes when they sit where the decoders explain them best
+// says if a miss is the encoder's or the embedding space's. Checked before any encoding.
+std::vector<int64_t> rows_to_refine(const DemoSet& demos, const EmbedFlags& f) {
   std::vector<int64_t> rows;
   for (int64_t i = 0; i < static_cast<int64_t>(demos.episodes.size()); ++i)
     if (f.refine_all || vae::is_held_out(demos.episodes[i])) rows.push_back(i);
   if (rows.empty()) throw std::invalid_argument(demos.path + ": no held-out demonstrations to refine (--refine-all?)");
+  return rows;
+}
+
+// mu with the rows moved towards the mode of p(z | demonstration); sigma stays the encoder's.
+torch::Tensor refine_rows(TrajectoryVae& model, const DemoSet& demos, const torch::Tensor& mu,
+                          const std::vector<int64_t>& rows, const vae::RefineOptions& refine) {
   const auto index = torch::tensor(rows);
   const auto data = vae::to_trajectory_dataset(demos, rows, model->config());
-  const auto refined = vae::refine_with_report(model, data, mu.index_select(0, index), f.refine);
+  const auto refined = vae::refine_with_report(model, data, mu.index_select(0, index), refine);
   std::printf("%zu demonstrations: %s\n", rows.size(), refined.description.c_str());
   return mu.index_copy(0, index, refined.z.to(mu.dtype()));
 }
@@ -189,9 +194,10 @@ void add_embed(CLI::App& vae) {
   c->callback([f] {
     torch::NoGradGuard no_grad;
     auto l = load(*f);
+    const auto refined_rows = f->refine.steps > 0 ? rows_to_refine(l.demos, *f) : std::vector<int64_t>{};
     torch::Tensor sigma;
     auto mu = encode_with_progress(l.model, l.demos, all_episodes(l.demos), &sigma);
-    if (f->refine.steps > 0) mu = refine_rows(l.model, l.demos, mu, *f);
+    if (!refined_rows.empty()) mu = refine_rows(l.model, l.demos, mu, refined_rows, f->refine);
     mu = mu.to(torch::kDouble);
     sigma = sigma.to(torch::kDouble);
     std::vector<vae::EmbeddingRow> rows;
