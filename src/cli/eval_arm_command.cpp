@@ -251,12 +251,7 @@ void add_eval_arm(CLI::App& eval) {
       ->check(CLI::Range(2, 1000))->capture_default_str();
   c->add_option("--monotone-tolerance", f->monotone_tolerance, "allowed step back along the segment, as a fraction of it")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
-  auto* refine = c->add_option("--refine-steps", f->refine.steps,
-                "Adam steps from the encoder's mean towards the mode of p(z | demonstration) under the decoders "
-                "(0: the encoder's mean, as the paper)")
-      ->check(CLI::Range(0, 100000))->capture_default_str();
-  c->add_option("--refine-lr", f->refine.learning_rate, "Adam's learning rate for --refine-steps")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+  auto* refine = add_refine_options(*c, f->refine, "each demonstration's z");
   blend->excludes(refine);
   c->add_option("--envs", f->rollout.num_envs, "environments stepped together")->check(CLI::Range(1, 1 << 20))->capture_default_str();
   add_device_option(*c, f->device);

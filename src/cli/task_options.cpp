@@ -41,6 +41,16 @@ CLI::Option* add_device_option(CLI::App& command, std::string& device, const std
   return command.add_option("--device", device, description)->check(CLI::IsMember({"cpu", "cuda"}))->capture_default_str();
 }
 
+CLI::Option* add_refine_options(CLI::App& command, vae::RefineOptions& refine, const std::string& whose) {
+  auto* steps = command.add_option("--refine-steps", refine.steps,
+                                   "Adam steps moving " + whose + " from the encoder's mean towards the mode of "
+                                   "p(z | demonstration) under the decoders (0: the encoder's mean, as the paper)")
+                    ->check(CLI::Range(0, 100000))->capture_default_str();
+  command.add_option("--refine-lr", refine.learning_rate, "Adam's learning rate for --refine-steps")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  return steps;
+}
+
 EnvRequest demo_env_request(const DemoSet& demos) {
   EnvRequest request;
   request.task = demos.header.env_id;

@@ -9,6 +9,7 @@
 
 #include "data/demos.h"
 #include "env/registry.h"
+#include "vae/latent_refinement.h"
 #include "vae/trajectory_vae.h"
 
 namespace vaegail::cli {
@@ -32,6 +33,10 @@ torch::Device parse_device(const std::string& name);
 // --device, restricted to cpu and cuda.
 CLI::Option* add_device_option(CLI::App& command, std::string& device,
                                const std::string& description = "where the networks run (cpu, cuda)");
+
+// --refine-steps (which demonstrations' z it moves is the command's to say in `whose`) and
+// --refine-lr; returns --refine-steps, for exclusions.
+CLI::Option* add_refine_options(CLI::App& command, vae::RefineOptions& refine, const std::string& whose);
 
 // The environment the demonstrations were recorded in, with episodes as long as the longest.
 EnvRequest demo_env_request(const DemoSet& demos);

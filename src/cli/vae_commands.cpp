@@ -184,12 +184,7 @@ void add_embed(CLI::App& vae) {
   CLI::App* c = vae.add_subcommand("embed", "one CSV row per demonstration: its labels and q(z | x) = N(mu, sigma)");
   add_model_flags(*c, *f);
   c->add_option("--out", f->out, "CSV: episode,expert_id,context,achieved_speed,held_out,mu_*,sigma_*")->required();
-  c->add_option("--refine-steps", f->refine.steps,
-                "Adam steps moving the held-out demonstrations' mu from the encoder's mean towards the mode of "
-                "p(z | demonstration) under the decoders (0: the encoder's mean, as the paper)")
-      ->check(CLI::Range(0, 100000))->capture_default_str();
-  c->add_option("--refine-lr", f->refine.learning_rate, "Adam's learning rate for --refine-steps")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+  add_refine_options(*c, f->refine, "the held-out demonstrations' mu");
   c->add_flag("--refine-all", f->refine_all, "with --refine-steps, refine every demonstration's mu");
   c->callback([f] {
     torch::NoGradGuard no_grad;
