@@ -91,7 +91,13 @@ double WalkerEnv::task_reward(double com_speed, double target_speed, double tors
 }
 
 double WalkerEnv::reward(const float* action) const {
-  return task_reward(com_speed(), context_[0], torso_height(), torso_pitch(), action, 6);
+  return task_reward(com_speed(), context_[0], torso_height(), torso_pitch(), action, 6) - posture_charge();
+}
+
+double WalkerEnv::posture_charge() const {
+  double sq = 0;
+  for (int j = 0; j < 6; ++j) sq += data()->qpos[kRootDofs + j] * data()->qpos[kRootDofs + j];
+  return walker_options_.posture_cost * sq / 6;
 }
 
 bool WalkerEnv::has_terminated() const { return walker_options_.terminate_on_fall && fallen(); }

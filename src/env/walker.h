@@ -19,6 +19,8 @@
 //   move    = (exp(-dv^2 / 2) + exp(-dv^2 / (2 * 0.25^2))) / 2, dv = com_speed - target
 // The broad term keeps a gradient towards any target; the narrow one rewards precision
 // (experts must average within 0.3 m/s). The control cost favours smooth, economical gaits.
+// WalkerOptions::posture_cost adds - posture_cost * mean_j q_j^2 over the six joint angles (0 by
+// default: the published experts' reward has no such term).
 #pragma once
 
 #include "env/mujoco_env.h"
@@ -28,6 +30,9 @@ namespace vaegail {
 struct WalkerOptions {
   bool terminate_on_fall = true;
   int episode_length = 400;
+  // Per rad^2 of mean squared joint angle: charging the distance from the straight-legged pose
+  // narrows the gaits that experts of one speed settle on (the walker's counterpart of the arm's).
+  double posture_cost = 0.0;
 };
 
 class WalkerEnv : public MujocoEnv {
@@ -46,6 +51,8 @@ class WalkerEnv : public MujocoEnv {
   double torso_pitch() const;
   double com_speed() const;
   bool fallen() const;
+  // posture_cost * mean_j q_j^2 of the current pose: what the reward charges for bending the legs.
+  double posture_charge() const;
   static constexpr double kAliveWeight = 0.2;
   // The reward for a given forward speed, posture and action, for tests and documentation.
   static double task_reward(double com_speed, double target_speed, double torso_height,

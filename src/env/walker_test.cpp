@@ -134,6 +134,30 @@ TEST(Walker, RewardMatchesHandComputedValues) {
   EXPECT_GT(WalkerEnv::task_reward(-0.8, -1.0, 1.3, 0, zero, 6), WalkerEnv::task_reward(0.0, -1.0, 1.3, 0, zero, 6));
 }
 
+TEST(Walker, PostureCostChargesTheMeanSquaredJointAngle) {
+  WalkerOptions options;
+  options.terminate_on_fall = false;
+  options.posture_cost = 0.5;
+  WalkerEnv env(options);
+  env.set_context({1.0});
+  env.reset(3);
+  StepOutcome out;
+  for (int t = 0; t < 8; ++t) out = env.step(wobble(t).data());
+  const auto obs = env.observation();
+  double sq = 0;
+  for (int j = 3; j < 9; ++j) sq += double(obs[j]) * obs[j];  // the six joint angles
+  EXPECT_GT(sq, 0.01);
+  EXPECT_NEAR(env.posture_charge(), 0.5 * sq / 6, 1e-6);
+  const auto action = wobble(7);
+  EXPECT_NEAR(out.reward, WalkerEnv::task_reward(env.com_speed(), 1.0, env.torso_height(), env.torso_pitch(),
+                                                 action.data(), 6) - 0.5 * sq / 6, 1e-6);
+  // Off by default: the published experts' reward has no posture term.
+  WalkerEnv plain;
+  plain.reset(3);
+  for (int t = 0; t < 8; ++t) plain.step(wobble(t).data());
+  EXPECT_DOUBLE_EQ(plain.posture_charge(), 0.0);
+}
+
 TEST(Walker, SameSeedSameTrajectoryOtherSeedOtherStart) {
   WalkerEnv a, b;
   a.reset(21);

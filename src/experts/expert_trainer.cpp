@@ -20,7 +20,8 @@ void to_json(nlohmann::json& j, const ExpertTrainOptions& o) {
   j = {{"total_steps", o.total_steps}, {"num_envs", o.num_envs}, {"steps_per_env", o.steps_per_env},
        {"env_threads", o.env_threads}, {"hidden", o.hidden}, {"gamma", o.gamma}, {"lambda", o.lambda},
        {"learning_rate", o.learning_rate}, {"epochs", o.epochs}, {"minibatches", o.minibatches},
-       {"target_kl", o.target_kl}, {"checkpoint_every", o.checkpoint_every}, {"device", o.device}};
+       {"target_kl", o.target_kl}, {"checkpoint_every", o.checkpoint_every}, {"device", o.device},
+       {"posture_cost", o.posture_cost}};
 }
 
 void from_json(const nlohmann::json& j, ExpertTrainOptions& o) {
@@ -38,6 +39,7 @@ void from_json(const nlohmann::json& j, ExpertTrainOptions& o) {
   o.target_kl = j.value("target_kl", d.target_kl);
   o.checkpoint_every = j.value("checkpoint_every", d.checkpoint_every);
   o.device = j.value("device", d.device);
+  o.posture_cost = j.value("posture_cost", d.posture_cost);
 }
 
 std::shared_ptr<Agent> make_expert_agent(const ExpertSpec& spec, const ExpertTrainOptions& options,
@@ -118,7 +120,9 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
   }
   write_file_atomically(run_dir + "/options.json", nlohmann::json(options).dump(2));
 
-  WalkerEnv prototype;
+  WalkerOptions walker;
+  walker.posture_cost = options.posture_cost;
+  WalkerEnv prototype(walker);
   prototype.set_context({spec.targets[0]});
   auto agent = make_expert_agent(spec, options, prototype.obs_dim(), prototype.act_dim());
   RunState state = read_state(run_dir);

@@ -34,6 +34,7 @@ struct ExpertTrainOptions {
   double target_kl = 0.02;
   int checkpoint_every = 5;  // iterations
   std::string device = "cpu";
+  double posture_cost = 0.0;  // WalkerOptions::posture_cost of the training reward (0: the published experts')
 };
 
 void to_json(nlohmann::json& j, const ExpertTrainOptions& o);

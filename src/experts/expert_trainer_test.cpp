@@ -90,6 +90,15 @@ TEST(ExpertTrainer, ResumesFromItsRunDirectoryAndLoadsForEvaluation) {
   EXPECT_THROW(load_expert(dir), std::runtime_error);
 }
 
+TEST(ExpertTrainer, PostureCostRoundTripsThroughJsonAndDefaultsToNone) {
+  ExpertTrainOptions o;
+  o.posture_cost = 0.5;
+  const nlohmann::json j = o;
+  EXPECT_DOUBLE_EQ(j.get<ExpertTrainOptions>().posture_cost, 0.5);
+  // Runs that predate the term (their options.json has no such key) read back without it.
+  EXPECT_DOUBLE_EQ(nlohmann::json::object().get<ExpertTrainOptions>().posture_cost, 0.0);
+}
+
 TEST(AgentPolicy, StochasticActionsDoNotDependOnBatching) {
   torch::set_num_threads(1);
   ExpertSpec spec{"s", {1.0}, -1.0, 0};
