@@ -68,5 +68,14 @@ expect_error "one.h5: no held-out demonstrations to refine" "$out" -- \
   > "$tmp/stdout" 2>&1 && grep -q "refined by 1 Adam steps" "$tmp/stdout" && [ -s "$out" ] ||
   fail "vae embed --refine-steps 1 --refine-all: $(tail -1 "$tmp/stdout")"
 
+# --only and --passing together: only the named experts that pass (speed-1_logstd-1_seed0 fails the bar).
+passing=$root/experts/walker/eval.json
+"$v" demos collect --experts-dir "$root/experts/walker" --only speed-1_logstd-1_seed0 speed-1_logstd-1_seed1 \
+  --passing "$passing" --episodes-per-expert 1 --out "$tmp/passing.h5" > "$tmp/stdout" 2>&1 &&
+  grep -q ": 1 experts x 1 episodes" "$tmp/stdout" ||
+  fail "demos collect --only A B --passing: $(tail -1 "$tmp/stdout")"
+expect_error "no expert named by --only passes" "$tmp/failing.h5" -- demos collect --experts-dir "$root/experts/walker" \
+  --only speed-1_logstd-1_seed0 --passing "$passing" --out "$tmp/failing.h5"
+
 echo "$helped commands answered --help; $failures failure(s)"
 [ "$failures" -eq 0 ]

@@ -254,13 +254,20 @@ struct CollectFlags {
 
 void run_collect(CollectFlags f) {
   if (fs::exists(f.out) && !f.force) throw std::runtime_error(f.out + ": exists (pass --force to replace it)");
-  std::vector<std::string> only = f.only;
-  for (const auto& path : f.passing) {  // keep experts that passed the bar in `experts eval --json` reports
+  std::vector<std::string> passing;
+  for (const auto& path : f.passing) {  // experts that passed the bar in `experts eval --json` reports
     const auto report = nlohmann::json::parse(read_file(path));
-    const auto before = only.size();
+    const auto before = passing.size();
     for (const auto& e : report)
-      if (e.at("passes").get<bool>()) only.push_back(e.at("id"));
-    if (only.size() == before) throw std::runtime_error(path + ": no expert passes the bar");
+      if (e.at("passes").get<bool>()) passing.push_back(e.at("id"));
+    if (passing.size() == before) throw std::runtime_error(path + ": no expert passes the bar");
+  }
+  // Both flags narrow the set: with both, an expert must be named by --only and pass.
+  std::vector<std::string> only = f.only.empty() ? passing : f.only;
+  if (!f.only.empty() && !f.passing.empty()) {
+    const auto fails = [&](const std::string& id) { return std::find(passing.begin(), passing.end(), id) == passing.end(); };
+    only.erase(std::remove_if(only.begin(), only.end(), fails), only.end());
+    if (only.empty()) throw std::invalid_argument("no expert named by --only passes in the --passing reports");
   }
   const auto dirs = expert_dirs(f.dirs, only);
   for (const auto& id : f.held_out)
