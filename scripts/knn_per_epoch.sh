@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # The held-out 5-NN vote of every epoch of a VAE run trained with `vae train --keep-epochs`,
 # and the same vote with each training expert left out in turn (`vae knn --leave-one-expert-out`).
-# Usage: scripts/knn_per_epoch.sh RUN_DIR DEMOS.h5 OUT.csv   (about 30 s an epoch for the walker)
+# Usage: scripts/knn_per_epoch.sh RUN_DIR DEMOS.h5 OUT.csv [EPOCH...]   (about 30 s an epoch for the walker;
+#        every kept epoch unless EPOCHs are named)
 # OUT.csv: epoch, the held-out vote's correct / total and per target, then the leave-one-expert-out
 # vote's correct / total and the training experts with most of their episodes correct / all.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ $# -eq 3 ] || { echo "usage: $0 RUN_DIR DEMOS.h5 OUT.csv" >&2; exit 2; }
+[ $# -ge 3 ] || { echo "usage: $0 RUN_DIR DEMOS.h5 OUT.csv [EPOCH...]" >&2; exit 2; }
 run=$1 demos=$2 out=$3
+shift 3
 ls "$run"/checkpoints/epoch_*.pt > /dev/null 2>&1 || { echo "$run: no epoch_N.pt (train with --keep-epochs)" >&2; exit 1; }
 v=build/vaegail
 tmp=$(mktemp -d)
@@ -21,8 +23,9 @@ summary='
   /experts with/ { n = split($0, a, " "); x = a[n - 2]; y = a[n] }
   END { printf "%s,%s,%s,%s,%s\n", c, t, p, x, y }'
 
-for e in $(ls "$run"/checkpoints/epoch_*.pt | sed 's/.*epoch_//; s/\.pt$//' | sort -n); do
+for e in ${*:-$(ls "$run"/checkpoints/epoch_*.pt | sed 's/.*epoch_//; s/\.pt$//' | sort -n)}; do
   ckpt=$run/checkpoints/epoch_$e.pt
+  [ -f "$ckpt" ] || { echo "$ckpt: no such epoch" >&2; exit 1; }
   $v --torch-threads 1 vae embed --checkpoint "$ckpt" --demos "$demos" --out "$tmp/emb.csv" > /dev/null 2>&1
   IFS=, read -r c t p _ _ < <($v vae knn --embeddings "$tmp/emb.csv" --k 5 | awk "$summary")
   IFS=, read -r lc lt _ lx ly < <($v vae knn --embeddings "$tmp/emb.csv" --k 5 --leave-one-expert-out | awk "$summary")
