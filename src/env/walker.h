@@ -13,11 +13,11 @@
 // fallen (1 when the torso centre is below 0.7 m or pitched more than ~57 degrees).
 //
 // Reward for the expert stage, in [-0.05, 1]:
-//   stand * upright * move - 0.05 * mean(a^2)
+//   stand * upright * (0.2 + 0.8 * move) - 0.05 * mean(clip(a)^2)
 //   stand   = clip((torso_height - 0.8) / 0.4, 0, 1)        full credit from 1.2 m
 //   upright = (1 + cos pitch) / 2
-//   move    = (exp(-dv^2 / 2) + exp(-dv^2 / (2 * 0.25^2))) / 2, dv = com_speed - target
-// The broad term keeps a gradient towards any target; the narrow one rewards precision
+//   move    = 0.6 * max(0, 1 - dv / max(1, |target|)) + 0.4 * exp(-2 dv^2), dv = |com_speed - target|
+// The broad (linear) term keeps a gradient towards any target; the narrow one rewards precision
 // (experts must average within 0.3 m/s). The control cost favours smooth, economical gaits.
 // WalkerOptions::posture_cost adds - posture_cost * mean_j q_j^2 over the six joint angles (0 by
 // default: the published experts' reward has no such term).
