@@ -4,7 +4,9 @@
 # Usage: scripts/knn_per_epoch.sh RUN_DIR DEMOS.h5 OUT.csv [EPOCH...]   (about 30 s an epoch for the walker;
 #        every kept epoch unless EPOCHs are named)
 # OUT.csv: epoch, the held-out vote's correct / total and per target, then the leave-one-expert-out
-# vote's correct / total and the training experts with most of their episodes correct / all.
+# vote's correct / total, the training experts with most of their episodes correct / all, and the
+# left-out vote over the experts of one target speed only (its correct / total; the same as the whole
+# when the set has no context-conditioned experts).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -ge 3 ] || { echo "usage: $0 RUN_DIR DEMOS.h5 OUT.csv [EPOCH...]" >&2; exit 2; }
@@ -14,7 +16,7 @@ ls "$run"/checkpoints/epoch_*.pt > /dev/null 2>&1 || { echo "$run: no epoch_N.pt
 v=build/vaegail
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "epoch,correct,total,per_target,loo_correct,loo_total,loo_experts_correct,loo_experts" > "$tmp/out.csv"
+echo "epoch,correct,total,per_target,loo_correct,loo_total,loo_experts_correct,loo_experts,loo_single_correct,loo_single_total" > "$tmp/out.csv"
 # "k-NN ...: 59 / 60 = 98.3% ...", "  target -1: 20 / 20 = 100.0%" per target, then
 # "  experts with most of their rows correct: 3 / 3"; awk prints correct,total,per_target,experts_correct,experts
 summary='
@@ -22,13 +24,18 @@ summary='
   /^  target/ { sub(/^ +/, ""); p = p (p ? "; " : "") $1 " " $2 " " $3 "/" $5 }
   /experts with/ { n = split($0, a, " "); x = a[n - 2]; y = a[n] }
   END { printf "%s,%s,%s,%s,%s\n", c, t, p, x, y }'
+# `--by-expert` lines "  expert ID (target T): C / N; ..." ("targets" for a context-conditioned expert)
+single='/^  expert .* \(target [^:]*: / { split($0, a, "): "); split(a[2], b, " "); c += b[1]; n += b[3] }
+  END { printf "%d,%d\n", c, n }'
 
 for e in ${*:-$(ls "$run"/checkpoints/epoch_*.pt | sed 's/.*epoch_//; s/\.pt$//' | sort -n)}; do
   ckpt=$run/checkpoints/epoch_$e.pt
   [ -f "$ckpt" ] || { echo "$ckpt: no such epoch" >&2; exit 1; }
   $v --torch-threads 1 vae embed --checkpoint "$ckpt" --demos "$demos" --out "$tmp/emb.csv" > /dev/null 2>&1
   IFS=, read -r c t p _ _ < <($v vae knn --embeddings "$tmp/emb.csv" --k 5 | awk "$summary")
-  IFS=, read -r lc lt _ lx ly < <($v vae knn --embeddings "$tmp/emb.csv" --k 5 --leave-one-expert-out | awk "$summary")
-  echo "$e,$c,$t,$p,$lc,$lt,$lx,$ly" | tee -a "$tmp/out.csv"
+  $v vae knn --embeddings "$tmp/emb.csv" --k 5 --leave-one-expert-out --by-expert > "$tmp/loo.txt"
+  IFS=, read -r lc lt _ lx ly < <(awk "$summary" "$tmp/loo.txt")
+  IFS=, read -r sc st < <(awk "$single" "$tmp/loo.txt")
+  echo "$e,$c,$t,$p,$lc,$lt,$lx,$ly,$sc,$st" | tee -a "$tmp/out.csv"
 done
 mv "$tmp/out.csv" "$out"
