@@ -6,7 +6,8 @@
 # OUT.csv: epoch, the held-out vote's correct / total and per target, then the leave-one-expert-out
 # vote's correct / total, the training experts with most of their episodes correct / all, and the
 # left-out vote over the experts of one target speed only (its correct / total; the same as the whole
-# when the set has no context-conditioned experts).
+# when the set has no context-conditioned experts), then the linear read-out's correct on the held-out
+# rows and with each training expert left out (`vae knn --linear`; totals as the vote's).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -ge 3 ] || { echo "usage: $0 RUN_DIR DEMOS.h5 OUT.csv [EPOCH...]" >&2; exit 2; }
@@ -16,11 +17,11 @@ ls "$run"/checkpoints/epoch_*.pt > /dev/null 2>&1 || { echo "$run: no epoch_N.pt
 v=build/vaegail
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "epoch,correct,total,per_target,loo_correct,loo_total,loo_experts_correct,loo_experts,loo_single_correct,loo_single_total" > "$tmp/out.csv"
-# "k-NN ...: 59 / 60 = 98.3% ...", "  target -1: 20 / 20 = 100.0%" per target, then
+echo "epoch,correct,total,per_target,loo_correct,loo_total,loo_experts_correct,loo_experts,loo_single_correct,loo_single_total,linear_correct,linear_loo_correct" > "$tmp/out.csv"
+# "k-NN ...: 59 / 60 = 98.3% ..." (or "linear read-out ...: "), "  target -1: 20 / 20 = 100.0%" per target, then
 # "  experts with most of their rows correct: 3 / 3"; awk prints correct,total,per_target,experts_correct,experts
 summary='
-  /^k-NN/ { split($0, a, ": "); split(a[2], b, " "); c = b[1]; t = b[3] }
+  /^(k-NN|linear)/ { split($0, a, ": "); split(a[2], b, " "); c = b[1]; t = b[3] }
   /^  target/ { sub(/^ +/, ""); p = p (p ? "; " : "") $1 " " $2 " " $3 "/" $5 }
   /experts with/ { n = split($0, a, " "); x = a[n - 2]; y = a[n] }
   END { printf "%s,%s,%s,%s,%s\n", c, t, p, x, y }'
@@ -36,6 +37,8 @@ for e in ${*:-$(ls "$run"/checkpoints/epoch_*.pt | sed 's/.*epoch_//; s/\.pt$//'
   $v vae knn --embeddings "$tmp/emb.csv" --k 5 --leave-one-expert-out --by-expert > "$tmp/loo.txt"
   IFS=, read -r lc lt _ lx ly < <(awk "$summary" "$tmp/loo.txt")
   IFS=, read -r sc st < <(awk "$single" "$tmp/loo.txt")
-  echo "$e,$c,$t,$p,$lc,$lt,$lx,$ly,$sc,$st" | tee -a "$tmp/out.csv"
+  IFS=, read -r rc _ < <($v vae knn --embeddings "$tmp/emb.csv" --linear | awk "$summary")
+  IFS=, read -r rlc _ < <($v vae knn --embeddings "$tmp/emb.csv" --linear --leave-one-expert-out | awk "$summary")
+  echo "$e,$c,$t,$p,$lc,$lt,$lx,$ly,$sc,$st,$rc,$rlc" | tee -a "$tmp/out.csv"
 done
 mv "$tmp/out.csv" "$out"

@@ -16,6 +16,8 @@ mkdir -p "$out"
 $v data info $demos --histogram "$out/speeds.png" > "$out/data_info.txt"
 $v vae embed --checkpoint "$run"/checkpoints/latest.pt --demos $demos --out "$out/embeddings.csv"
 $v vae knn --embeddings "$out/embeddings.csv" --k 5 | tee "$out/knn.txt"
+# the speed along one direction of z (a ridge regression on mu), where the vote weighs every direction alike
+$v vae knn --embeddings "$out/embeddings.csv" --linear | tee -a "$out/knn.txt"
 $v plot tsne --embeddings "$out/embeddings.csv" --out "$out/tsne.png" --coords-out "$out/tsne.csv"
 $v plot curves --csv "$run"/metrics.csv --y train_loss,val_loss --log-y \
     --title "walker VAE, dense set: loss per epoch" --out "$out/vae_loss.png"

@@ -12,6 +12,8 @@ mkdir -p "$out"
 # Section 3.1: the embedding space.
 $v vae embed --checkpoint $vae --demos $demos --out "$out/embeddings.csv"
 $v vae knn --embeddings "$out/embeddings.csv" --k 5 | tee "$out/knn.txt"
+# the speed along one direction of z (a ridge regression on mu), where the vote weighs every direction alike
+$v vae knn --embeddings "$out/embeddings.csv" --linear | tee -a "$out/knn.txt"
 $v plot tsne --embeddings "$out/embeddings.csv" --out "$out/tsne.png" --coords-out "$out/tsne.csv"
 $v plot curves --csv checkpoints/walker/vae/metrics.csv --y train_loss,val_loss --log-y \
     --title "walker VAE: loss per epoch" --out "$out/vae_loss.png"

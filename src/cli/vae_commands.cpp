@@ -219,16 +219,25 @@ void add_knn(CLI::App& vae) {
   auto k = std::make_shared<int>(5);
   auto leave_one_out = std::make_shared<bool>(false);
   auto by_expert = std::make_shared<bool>(false);
-  CLI::App* c = vae.add_subcommand("knn", "classify held-out embeddings by a k-NN vote of the training ones' target");
+  auto linear = std::make_shared<bool>(false);
+  CLI::App* c = vae.add_subcommand(
+      "knn", "classify held-out embeddings by the training ones' target: a k-NN vote, or a linear read-out");
   c->add_option("--embeddings", *path, "CSV from `vaegail vae embed`")->required();
   c->add_option("--k", *k, "neighbours")->check(CLI::Range(1, 1 << 20))->capture_default_str();
   c->add_flag("--leave-one-expert-out", *leave_one_out,
               "instead classify every training expert's embeddings against the other training experts'");
   c->add_flag("--by-expert", *by_expert, "also a line per classified expert: its score and its nearest experts");
-  c->callback([path, k, leave_one_out, by_expert] {
+  c->add_flag("--linear", *linear,
+              "instead of the vote, the target as a linear function of mu by ridge regression on the training "
+              "rows (the ridge chosen by leaving each training expert out), each row classified as the "
+              "training target nearest its read-out (--k unused)");
+  c->callback([path, k, leave_one_out, by_expert, linear] {
     const auto rows = vae::parse_embedding_csv(read_file(*path), *path);
-    const auto result = *leave_one_out ? vae::knn_classify_leave_one_expert_out(rows, *k) : vae::knn_classify(rows, *k);
-    std::fputs(vae::format_knn(result, *by_expert).c_str(), stdout);
+    const auto result = *linear ? (*leave_one_out ? vae::linear_classify_leave_one_expert_out(rows)
+                                                  : vae::linear_classify(rows))
+                                : (*leave_one_out ? vae::knn_classify_leave_one_expert_out(rows, *k)
+                                                  : vae::knn_classify(rows, *k));
+    std::fputs(vae::format_classification(result, *by_expert).c_str(), stdout);
   });
 }
 

@@ -123,17 +123,21 @@ double vote(const std::vector<const EmbeddingRow*>& neighbours) {
   return 0;  // unreachable: k >= 1 and the pool is not empty
 }
 
-// Classifies each query against pool_for(query), tallying per target and per expert.
-template <typename PoolFor>
-KnnResult tally(const std::vector<const EmbeddingRow*>& queries, int k, PoolFor pool_for) {
-  if (k < 1) throw std::invalid_argument("knn: k must be >= 1");
-  KnnResult result;
-  result.k = k;
+// A query's classification: the target it gets, the rows it was voted by (k-NN) and its
+// read-out (linear).
+struct Prediction {
+  double context = 0;
+  std::vector<const EmbeddingRow*> neighbours;
+  double readout = 0;
+};
+
+// Classifies each query, tallying per target and per expert.
+template <typename Classify>
+TargetClassification tally(const std::vector<const EmbeddingRow*>& queries, Classify classify) {
+  TargetClassification result;
   for (const auto* q : queries) {
-    const auto& pool = pool_for(*q);
-    result.k = std::min<int>(result.k, static_cast<int>(pool.size()));
-    const auto neighbours = nearest(*q, pool, k);
-    const bool hit = vote(neighbours) == q->context;
+    const Prediction p = classify(*q);
+    const bool hit = p.context == q->context;
     result.total += 1;
     result.correct += hit;
     auto& target = result.per_target[q->context];
@@ -143,11 +147,141 @@ KnnResult tally(const std::vector<const EmbeddingRow*>& queries, int k, PoolFor 
     expert.contexts.insert(q->context);
     expert.correct += hit;
     expert.total += 1;
-    for (const auto* n : neighbours) ++expert.neighbours[n->expert_id];
+    expert.readout_sum += p.readout;
+    for (const auto* n : p.neighbours) ++expert.neighbours[n->expert_id];
   }
   result.experts = static_cast<int>(result.per_expert.size());
   for (const auto& [id, e] : result.per_expert) result.experts_majority_correct += 2 * e.correct > e.total;
   return result;
+}
+
+// Each query against pool_for(query) by the k-NN vote.
+template <typename PoolFor>
+TargetClassification knn_tally(const std::vector<const EmbeddingRow*>& queries, int k, PoolFor pool_for) {
+  if (k < 1) throw std::invalid_argument("knn: k must be >= 1");
+  int smallest_k = k;
+  auto result = tally(queries, [&](const EmbeddingRow& q) {
+    const auto& pool = pool_for(q);
+    smallest_k = std::min<int>(smallest_k, static_cast<int>(pool.size()));
+    auto neighbours = nearest(q, pool, k);
+    return Prediction{vote(neighbours), std::move(neighbours), 0.0};
+  });
+  result.k = smallest_k;
+  return result;
+}
+
+// Sums over rows of x xᵀ and x·target, x = [mu, 1]: the normal equations of least squares from
+// x to the target. A pool's sums are its experts' sums added, so leaving one expert out is a
+// subtraction rather than a pass over the rows.
+struct NormalEquations {
+  size_t n = 0;
+  std::vector<double> xx, xy;  // n x n row-major, n
+  std::map<double, int> targets;  // target -> rows
+
+  void add(const EmbeddingRow& r) {
+    if (n == 0) {
+      n = r.mu.size() + 1;
+      xx.assign(n * n, 0.0);
+      xy.assign(n, 0.0);
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const double xi = i + 1 < n ? r.mu[i] : 1.0;
+      for (size_t j = 0; j < n; ++j) xx[i * n + j] += xi * (j + 1 < n ? r.mu[j] : 1.0);
+      xy[i] += xi * r.context;
+    }
+    ++targets[r.context];
+  }
+  NormalEquations minus(const NormalEquations& o) const {
+    NormalEquations d = *this;
+    for (size_t i = 0; i < xx.size(); ++i) d.xx[i] -= o.xx[i];
+    for (size_t i = 0; i < xy.size(); ++i) d.xy[i] -= o.xy[i];
+    for (const auto& [t, rows] : o.targets)
+      if ((d.targets[t] -= rows) == 0) d.targets.erase(t);
+    return d;
+  }
+};
+
+// A fitted read-out: the weights (bias last) and the targets its rows had, to snap to.
+struct Readout {
+  std::vector<double> w;
+  std::vector<double> targets;
+
+  Prediction operator()(const EmbeddingRow& q) const {
+    double value = w.back();
+    for (size_t j = 0; j + 1 < w.size(); ++j) value += w[j] * q.mu[j];
+    double best = targets.front();
+    for (double t : targets)
+      if (std::abs(t - value) < std::abs(best - value)) best = t;
+    return Prediction{best, {}, value};
+  }
+};
+
+// Ridge regression: (XᵀX + ridge·I on the weights, not the bias) w = Xᵀy, by Gauss-Jordan
+// elimination with partial pivoting.
+Readout fit_readout(const NormalEquations& e, double ridge) {
+  const size_t n = e.n;
+  std::vector<std::vector<double>> a(n, std::vector<double>(n + 1));
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = 0; j < n; ++j) a[i][j] = e.xx[i * n + j] + (i == j && i + 1 < n ? ridge : 0.0);
+    a[i][n] = e.xy[i];
+  }
+  for (size_t c = 0; c < n; ++c) {
+    size_t pivot = c;
+    for (size_t r = c + 1; r < n; ++r)
+      if (std::abs(a[r][c]) > std::abs(a[pivot][c])) pivot = r;
+    if (std::abs(a[pivot][c]) < 1e-12) throw std::invalid_argument("linear read-out: singular least-squares system");
+    std::swap(a[c], a[pivot]);
+    for (size_t r = 0; r < n; ++r) {
+      if (r == c) continue;
+      const double f = a[r][c] / a[c][c];
+      for (size_t j = c; j <= n; ++j) a[r][j] -= f * a[c][j];
+    }
+  }
+  Readout out;
+  for (size_t i = 0; i < n; ++i) out.w.push_back(a[i][n] / a[i][i]);
+  for (const auto& [t, rows] : e.targets) out.targets.push_back(t);
+  return out;
+}
+
+// Training rows grouped by expert, each group with its normal equations.
+struct ExpertRows {
+  std::vector<const EmbeddingRow*> rows;
+  NormalEquations sums;
+};
+
+// The ridge, from 1e-6 to 100 by decades, under which the read-out classifies most rows right
+// when each of `experts` is read by a fit over the others (their sums: `total`); a tie goes to
+// the larger ridge, the smoother fit. Chosen on training experts alone: a latent dimension that
+// barely varies over them can take a large weight in a plain fit, which then misreads an
+// unseen expert that varies along it.
+double choose_ridge(const std::map<std::string, ExpertRows>& experts, const NormalEquations& total,
+                    const std::string& excluded) {
+  double best_ridge = 0;
+  int best = -1;
+  for (double ridge = 1e-6; ridge < 1e3; ridge *= 10) {
+    int correct = 0;
+    for (const auto& [id, e] : experts) {
+      if (id == excluded) continue;
+      const NormalEquations others = total.minus(e.sums);
+      if (others.targets.empty()) continue;
+      const Readout readout = fit_readout(others, ridge);
+      for (const auto* r : e.rows) correct += readout(*r).context == r->context;
+    }
+    if (correct >= best) best = correct, best_ridge = ridge;
+  }
+  return best_ridge;
+}
+
+std::map<std::string, ExpertRows> rows_by_expert(const std::vector<const EmbeddingRow*>& train,
+                                                  NormalEquations& total) {
+  std::map<std::string, ExpertRows> experts;
+  for (const auto* r : train) {
+    experts[r->expert_id].rows.push_back(r);
+    experts[r->expert_id].sums.add(*r);
+    total.add(*r);
+  }
+  if (experts.size() < 2) throw std::invalid_argument("linear read-out: choosing its ridge needs two training experts");
+  return experts;
 }
 
 std::vector<const EmbeddingRow*> training_rows(const std::vector<EmbeddingRow>& rows) {
@@ -158,26 +292,61 @@ std::vector<const EmbeddingRow*> training_rows(const std::vector<EmbeddingRow>& 
   return train;
 }
 
-}  // namespace
-
-KnnResult knn_classify(const std::vector<EmbeddingRow>& rows, int k) {
-  const auto train = training_rows(rows);
+std::vector<const EmbeddingRow*> held_out_rows(const std::vector<EmbeddingRow>& rows) {
   std::vector<const EmbeddingRow*> queries;
   for (const auto& r : rows)
     if (r.held_out) queries.push_back(&r);
   if (queries.empty()) throw std::invalid_argument("knn: no held-out rows (held_out = 1) to classify");
-  return tally(queries, k, [&](const EmbeddingRow&) -> const auto& { return train; });
+  return queries;
 }
 
-KnnResult knn_classify_leave_one_expert_out(const std::vector<EmbeddingRow>& rows, int k) {
-  const auto train = training_rows(rows);
-  std::map<std::string, std::vector<const EmbeddingRow*>> others;  // expert -> the rest
+// Training expert -> the training rows of every other expert.
+std::map<std::string, std::vector<const EmbeddingRow*>> other_experts_rows(
+    const std::vector<const EmbeddingRow*>& train) {
+  std::map<std::string, std::vector<const EmbeddingRow*>> others;
   for (const auto* r : train) others[r->expert_id];
   if (others.size() < 2) throw std::invalid_argument("knn: leaving one expert out needs two training experts");
   for (auto& [id, pool] : others)
     for (const auto* r : train)
       if (r->expert_id != id) pool.push_back(r);
-  auto result = tally(train, k, [&](const EmbeddingRow& q) -> const auto& { return others.at(q.expert_id); });
+  return others;
+}
+
+}  // namespace
+
+TargetClassification knn_classify(const std::vector<EmbeddingRow>& rows, int k) {
+  const auto train = training_rows(rows);
+  return knn_tally(held_out_rows(rows), k, [&](const EmbeddingRow&) -> const auto& { return train; });
+}
+
+TargetClassification knn_classify_leave_one_expert_out(const std::vector<EmbeddingRow>& rows, int k) {
+  const auto train = training_rows(rows);
+  const auto others = other_experts_rows(train);
+  auto result = knn_tally(train, k, [&](const EmbeddingRow& q) -> const auto& { return others.at(q.expert_id); });
+  result.leave_one_expert_out = true;
+  return result;
+}
+
+TargetClassification linear_classify(const std::vector<EmbeddingRow>& rows) {
+  NormalEquations total;
+  const auto experts = rows_by_expert(training_rows(rows), total);
+  const double ridge = choose_ridge(experts, total, "");
+  auto result = tally(held_out_rows(rows), fit_readout(total, ridge));
+  result.linear = true;
+  result.ridge = ridge;
+  return result;
+}
+
+TargetClassification linear_classify_leave_one_expert_out(const std::vector<EmbeddingRow>& rows) {
+  NormalEquations total;
+  const auto experts = rows_by_expert(training_rows(rows), total);
+  std::map<std::string, Readout> readouts;  // each expert's, fit without it, its ridge chosen without it
+  for (const auto& [id, e] : experts) {
+    const NormalEquations others = total.minus(e.sums);
+    readouts.emplace(id, fit_readout(others, choose_ridge(experts, others, id)));
+  }
+  auto result = tally(training_rows(rows), [&](const EmbeddingRow& q) { return readouts.at(q.expert_id)(q); });
+  result.linear = true;
   result.leave_one_expert_out = true;
   return result;
 }
@@ -185,15 +354,22 @@ KnnResult knn_classify_leave_one_expert_out(const std::vector<EmbeddingRow>& row
 namespace {
 
 // "  expert ID (target T): C / N; nearest: A 40, B 12, C 8" with the three most frequent
-// neighbours; "targets -1/0/1" for a context-conditioned expert.
-std::string expert_line(const std::string& id, const ExpertVote& e) {
+// neighbours, or "; mean read-out +0.93" for the linear read-out; "targets -1/0/1" for a
+// context-conditioned expert.
+std::string expert_line(const std::string& id, const ExpertVote& e, bool linear) {
   std::vector<std::pair<int, std::string>> by_count;
   for (const auto& [neighbour, n] : e.neighbours) by_count.push_back({-n, neighbour});
   std::sort(by_count.begin(), by_count.end());
   std::string targets;
   for (double c : e.contexts) targets += (targets.empty() ? "" : "/") + number(c);
   std::string line = "  expert " + id + (e.contexts.size() > 1 ? " (targets " : " (target ") + targets +
-                     "): " + std::to_string(e.correct) + " / " + std::to_string(e.total) + "; nearest:";
+                     "): " + std::to_string(e.correct) + " / " + std::to_string(e.total);
+  if (linear) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "; mean read-out %+.2f\n", e.readout_sum / e.total);
+    return line + buf;
+  }
+  line += "; nearest:";
   for (size_t i = 0; i < std::min<size_t>(3, by_count.size()); ++i)
     line += (i ? ", " : " ") + by_count[i].second + " " + std::to_string(-by_count[i].first);
   return line + "\n";
@@ -201,11 +377,18 @@ std::string expert_line(const std::string& id, const ExpertVote& e) {
 
 }  // namespace
 
-std::string format_knn(const KnnResult& r, bool by_expert) {
+std::string format_classification(const TargetClassification& r, bool by_expert) {
   char buf[160];
-  std::snprintf(buf, sizeof buf, "k-NN (k = %d) on %s: %d / %d = %.1f%%%s\n", r.k,
+  std::string rule = "k-NN (k = " + std::to_string(r.k) + ")";
+  if (r.linear && r.leave_one_expert_out) {
+    rule = "linear read-out (its ridge chosen anew without each expert)";
+  } else if (r.linear) {
+    std::snprintf(buf, sizeof buf, "linear read-out (ridge %g, chosen by leaving each training expert out)", r.ridge);
+    rule = buf;
+  }
+  std::snprintf(buf, sizeof buf, "%s on %s: %d / %d = %.1f%%%s\n", rule.c_str(),
                 r.leave_one_expert_out ? "training embeddings, each expert left out in turn" : "held-out embeddings",
-                r.correct, r.total, 100.0 * r.accuracy(), r.leave_one_expert_out ? "" : "  (bar: >= 90%)");
+                r.correct, r.total, 100.0 * r.accuracy(), r.leave_one_expert_out || r.linear ? "" : "  (bar: >= 90%)");
   std::string out = buf;
   for (const auto& [context, ct] : r.per_target) {
     std::snprintf(buf, sizeof buf, "  target %+g: %d / %d = %.1f%%\n", context, ct.first, ct.second,
@@ -216,7 +399,7 @@ std::string format_knn(const KnnResult& r, bool by_expert) {
                 r.experts);
   out += buf;
   if (by_expert)
-    for (const auto& [id, e] : r.per_expert) out += expert_line(id, e);
+    for (const auto& [id, e] : r.per_expert) out += expert_line(id, e, r.linear);
   return out;
 }
 

@@ -82,7 +82,7 @@ TEST(EmbeddingTest, KnnRecoversSeparatedTargets) {
   EXPECT_EQ(result.correct, 40);
   ASSERT_EQ(result.per_target.size(), 4u);
   EXPECT_EQ(result.per_target.at(3.0), (std::pair<int, int>{10, 10}));
-  EXPECT_NE(format_knn(result).find("40 / 40 = 100.0%"), std::string::npos) << format_knn(result);
+  EXPECT_NE(format_classification(result).find("40 / 40 = 100.0%"), std::string::npos) << format_classification(result);
 }
 
 TEST(EmbeddingTest, KnnIsNearChanceOnOverlappingTargets) {
@@ -117,11 +117,11 @@ TEST(EmbeddingTest, LeaveOneExpertOutVotesWithoutTheExpertsOwnRows) {
   EXPECT_EQ(result.experts, 4);
   EXPECT_EQ(result.experts_majority_correct, 2);
   EXPECT_EQ(result.per_target.at(2.0), (std::pair<int, int>{0, 2}));
-  EXPECT_NE(format_knn(result).find("each expert left out"), std::string::npos);
+  EXPECT_NE(format_classification(result).find("each expert left out"), std::string::npos);
   EXPECT_EQ(result.per_expert.at("a").neighbours, (std::map<std::string, int>{{"b", 2}}));
-  EXPECT_NE(format_knn(result, true).find("  expert a (target 1): 0 / 2; nearest: b 2\n"), std::string::npos)
-      << format_knn(result, true);
-  EXPECT_EQ(format_knn(result).find("  expert a"), std::string::npos);
+  EXPECT_NE(format_classification(result, true).find("  expert a (target 1): 0 / 2; nearest: b 2\n"), std::string::npos)
+      << format_classification(result, true);
+  EXPECT_EQ(format_classification(result).find("  expert a"), std::string::npos);
   EXPECT_THROW(knn_classify_leave_one_expert_out({at("a", 1, 0), at("a", 1, 1)}, 1), std::invalid_argument);
 }
 
@@ -140,6 +140,77 @@ TEST(EmbeddingTest, KnnCountsExpertsWithAMajorityCorrect) {
   const auto result = knn_classify(synthetic(0.3, 1), 5);
   EXPECT_EQ(result.experts, 4);  // row() names experts e0..e3
   EXPECT_EQ(result.experts_majority_correct, 4);
+}
+
+// Target t's experts sit at mu_0 = scale t, each with its own style in mu_1 (spread 2 apart),
+// and mu_2 is a collapsed dimension (0 on every row). Two experts per target but 3. The held-out
+// expert (target 1) shares its style with expert a (target -1): the vote follows the style, the
+// read-out the speed.
+std::vector<EmbeddingRow> speed_along_one_direction(double scale) {
+  std::vector<EmbeddingRow> rows;
+  auto add = [&](const std::string& expert, double target, double style, bool held_out) {
+    for (int i = 0; i < 5; ++i) {
+      EmbeddingRow r = row(static_cast<int>(rows.size()), target, held_out, {scale * target, style + 0.01 * i, 0.0});
+      r.expert_id = expert;
+      rows.push_back(r);
+    }
+  };
+  add("a", -1, 0, false);
+  add("b", 0, 2, false);
+  add("c", 1, 4, false);
+  add("d", 3, 6, false);
+  add("e", 0, 8, false);
+  add("f", -1, 10, false);
+  add("g", 1, 12, false);
+  add("unseen", 1, 0, true);
+  return rows;
+}
+
+double mean_readout(const TargetClassification& result, const std::string& expert) {
+  const auto& e = result.per_expert.at(expert);
+  return e.readout_sum / e.total;
+}
+
+TEST(EmbeddingTest, LinearReadoutFindsTheTargetAlongOneDirection) {
+  const auto rows = speed_along_one_direction(0.2);
+  EXPECT_EQ(knn_classify(rows, 5).correct, 0);  // all five neighbours are a's
+  const auto result = linear_classify(rows);
+  EXPECT_TRUE(result.linear);
+  EXPECT_EQ(result.correct, 5);
+  // The targets are exactly 5 mu_0: the unseen rows' 0.2 reads as 1, less the ridge's shrinkage.
+  EXPECT_NEAR(mean_readout(result, "unseen"), 1.0, 0.1);
+  const std::string text = format_classification(result, true);
+  EXPECT_NE(text.find("linear read-out (ridge "), std::string::npos) << text;
+  EXPECT_NE(text.find("on held-out embeddings: 5 / 5 = 100.0%\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("  expert unseen (target 1): 5 / 5; mean read-out +"), std::string::npos) << text;
+  EXPECT_EQ(text.find("bar"), std::string::npos) << text;  // the bar is the vote's
+}
+
+TEST(EmbeddingTest, LinearReadoutRidgeIsTheLargestThatReadsLeftOutExpertsBest) {
+  // Targets 500 mu_0: a ridge of 1e-3 or more shrinks the weight until -1 and 1 read as 0.
+  auto small = linear_classify(speed_along_one_direction(0.002));
+  EXPECT_LE(small.ridge, 1e-4);
+  EXPECT_EQ(small.correct, 5);
+  // Targets mu_0 / 2: every ridge up to 10 reads the left-out experts alike, and ties go up.
+  EXPECT_GE(linear_classify(speed_along_one_direction(2.0)).ridge, 10.0);
+}
+
+TEST(EmbeddingTest, LinearReadoutLeftOutIsRefitWithoutTheExpert) {
+  auto rows = speed_along_one_direction(0.2);
+  rows.resize(rows.size() - 5);  // the held-out expert plays no part
+  // Left out, each expert is read by the line through the others. The nearest target is one of
+  // the other experts', so d (target 3, the only one) cannot be right.
+  const auto result = linear_classify_leave_one_expert_out(rows);
+  EXPECT_TRUE(result.leave_one_expert_out);
+  EXPECT_EQ(result.total, 35);
+  EXPECT_EQ(result.correct, 30);
+  EXPECT_EQ(result.per_target.at(3.0), (std::pair<int, int>{0, 5}));
+  EXPECT_GT(mean_readout(result, "d"), 2.0);  // read as fast, snapped to the others' fastest, 1
+  // An expert off the others' line is read by their line, not by its own rows.
+  for (auto& r : rows)
+    if (r.expert_id == "b") r.mu[0] = 0.2;
+  EXPECT_NEAR(mean_readout(linear_classify_leave_one_expert_out(rows), "b"), 1.0, 0.1);
+  EXPECT_THROW(linear_classify(rows), std::invalid_argument);  // nothing held out
 }
 
 }  // namespace
