@@ -378,7 +378,7 @@ std::string expert_line(const std::string& id, const ExpertVote& e, bool linear)
 }  // namespace
 
 std::string format_classification(const TargetClassification& r, bool by_expert) {
-  char buf[160];
+  char buf[256];  // the read-out's header line runs to about 140 characters
   std::string rule = "k-NN (k = " + std::to_string(r.k) + ")";
   if (r.linear && r.leave_one_expert_out) {
     rule = "linear read-out (its ridge chosen anew without each expert)";
