@@ -357,9 +357,6 @@ namespace {
 // neighbours, or "; mean read-out +0.93" for the linear read-out; "targets -1/0/1" for a
 // context-conditioned expert.
 std::string expert_line(const std::string& id, const ExpertVote& e, bool linear) {
-  std::vector<std::pair<int, std::string>> by_count;
-  for (const auto& [neighbour, n] : e.neighbours) by_count.push_back({-n, neighbour});
-  std::sort(by_count.begin(), by_count.end());
   std::string targets;
   for (double c : e.contexts) targets += (targets.empty() ? "" : "/") + number(c);
   std::string line = "  expert " + id + (e.contexts.size() > 1 ? " (targets " : " (target ") + targets +
@@ -369,6 +366,9 @@ std::string expert_line(const std::string& id, const ExpertVote& e, bool linear)
     std::snprintf(buf, sizeof buf, "; mean read-out %+.2f\n", e.readout_sum / e.total);
     return line + buf;
   }
+  std::vector<std::pair<int, std::string>> by_count;
+  for (const auto& [neighbour, n] : e.neighbours) by_count.push_back({-n, neighbour});
+  std::sort(by_count.begin(), by_count.end());
   line += "; nearest:";
   for (size_t i = 0; i < std::min<size_t>(3, by_count.size()); ++i)
     line += (i ? ", " : " ") + by_count[i].second + " " + std::to_string(-by_count[i].first);
