@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "env/arm.h"
+#include "env/humanoid.h"
 #include "env/mujoco_env.h"
 #include "env/walker.h"
 
@@ -14,7 +15,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }
 }  // namespace
 
-std::vector<std::string> builtin_tasks() { return {"walker", "arm"}; }
+std::vector<std::string> builtin_tasks() { return {"walker", "arm", "humanoid"}; }
 
 std::unique_ptr<Env> make_env(const EnvRequest& request) {
   if (request.task == "walker") {
@@ -27,6 +28,12 @@ std::unique_ptr<Env> make_env(const EnvRequest& request) {
     ArmOptions o;
     if (request.episode_length > 0) o.episode_length = request.episode_length;
     return std::make_unique<ArmEnv>(o);
+  }
+  if (request.task == "humanoid") {
+    HumanoidOptions o;
+    o.terminate_on_fall = request.terminate_on_fall;
+    if (request.episode_length > 0) o.episode_length = request.episode_length;
+    return std::make_unique<HumanoidEnv>(o);
   }
   if (ends_with(request.task, ".xml")) {
     MujocoEnvOptions o;

@@ -1,0 +1,315 @@
+#include "env/humanoid.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "env/registry.h"
+
+namespace vaegail {
+namespace {
+
+// The 56 hinges of the CMU skeleton as the paper's body has them, side by side with their gears.
+std::vector<std::string> expected_hinges() {
+  std::vector<std::string> names;
+  auto add = [&](const std::string& bone, const std::vector<std::string>& axes) {
+    for (const auto& a : axes) names.push_back(bone + a);
+  };
+  for (const char* s : {"l", "r"}) {
+    const std::string side = s;
+    add(side + "femur", {"rz", "ry", "rx"});
+    add(side + "tibia", {"rx"});
+    add(side + "foot", {"rz", "rx"});
+    add(side + "toes", {"rx"});
+  }
+  for (const char* bone : {"lowerback", "upperback", "thorax", "lowerneck", "upperneck", "head"})
+    add(bone, {"rz", "ry", "rx"});
+  for (const char* s : {"l", "r"}) {
+    const std::string side = s;
+    add(side + "clavicle", {"rz", "ry"});
+    add(side + "humerus", {"rz", "ry", "rx"});
+    add(side + "radius", {"rx"});
+    add(side + "wrist", {"ry"});
+    add(side + "hand", {"rz", "rx"});
+    add(side + "fingers", {"rx"});
+    add(side + "thumb", {"rz", "rx"});
+  }
+  return names;
+}
+
+double expected_gear(const std::string& joint) {
+  auto has = [&](const char* part) { return joint.find(part) != std::string::npos; };
+  if (has("femurrx")) return 120;
+  if (has("tibia")) return 80;
+  if (has("femur") || has("humerus") || has("radius") || has("back") || has("thorax")) return 40;
+  return 20;
+}
+
+std::vector<float> wobble(int t) {
+  std::vector<float> a(HumanoidEnv::kHinges);
+  for (int i = 0; i < HumanoidEnv::kHinges; ++i) a[i] = 0.3f * std::sin(0.2 * t + i);
+  return a;
+}
+
+// Holds the rest pose: stiffness in gear units per radian plus the gravity and Coriolis torques
+// MuJoCo reports for the tree hanging from the root (qfrc_bias of the last physics step), which
+// carry the upper body and the arms. The ankles balance the whole body over the feet, so they
+// need twenty times the others' stiffness (gravity alone tips the body about them at ~570 N m/rad).
+std::vector<float> pd_hold(const HumanoidEnv& env) {
+  const mjModel* m = env.model();
+  const mjData* d = env.data();
+  std::vector<float> u(m->nu);
+  for (int a = 0; a < m->nu; ++a) {
+    const int joint = m->actuator_trnid[2 * a];
+    const double gear = m->actuator_gear[6 * a];
+    const bool ankle = std::string(mj_id2name(m, mjOBJ_JOINT, joint)).find("foot") != std::string::npos;
+    const double stiffness = (ankle ? 60.0 : 3.0) * gear;
+    const double torque = d->qfrc_bias[m->jnt_dofadr[joint]] - stiffness * d->qpos[m->jnt_qposadr[joint]];
+    u[a] = static_cast<float>(std::clamp(torque / gear, -1.0, 1.0));
+  }
+  return u;
+}
+
+TEST(Humanoid, HasTheCmuSkeletonsFiftySixHingesAndMotorsByName) {
+  HumanoidEnv env;
+  const mjModel* m = env.model();
+  EXPECT_EQ(m->nq, 63);
+  EXPECT_EQ(m->nv, 62);
+  EXPECT_EQ(m->nu, 56);
+  EXPECT_EQ(m->nbody, 32);  // the world and the skeleton's 31 bones
+  ASSERT_EQ(m->jnt_type[0], mjJNT_FREE);
+  EXPECT_STREQ(mj_id2name(m, mjOBJ_JOINT, 0), "root");
+  const auto hinges = expected_hinges();
+  ASSERT_EQ(hinges.size(), 56u);
+  for (std::size_t i = 0; i < hinges.size(); ++i) {
+    const int j = mj_name2id(m, mjOBJ_JOINT, hinges[i].c_str());
+    ASSERT_GE(j, 0) << hinges[i];
+    EXPECT_EQ(m->jnt_type[j], mjJNT_HINGE) << hinges[i];
+    EXPECT_TRUE(m->jnt_limited[j]) << hinges[i];
+    const int a = mj_name2id(m, mjOBJ_ACTUATOR, hinges[i].c_str());
+    ASSERT_GE(a, 0) << hinges[i];
+    EXPECT_EQ(m->actuator_trnid[2 * a], j) << hinges[i];
+    EXPECT_EQ(m->actuator_gear[6 * a], expected_gear(hinges[i])) << hinges[i];
+    EXPECT_EQ(m->actuator_ctrlrange[2 * a], -1.0);
+    EXPECT_EQ(m->actuator_ctrlrange[2 * a + 1], 1.0);
+    // Action a drives observation a: both follow the model's joint order.
+    EXPECT_EQ(env.action_spec().names[a], mj_id2name(m, mjOBJ_JOINT, a + 1));
+    EXPECT_EQ(env.observation_spec().names[j - 1], hinges[i] + "_angle");
+  }
+  for (const char* bone : {"root", "lhipjoint", "lfemur", "ltibia", "lfoot", "ltoes", "rhipjoint", "rfemur",
+                           "rtibia", "rfoot", "rtoes", "lowerback", "upperback", "thorax", "lowerneck",
+                           "upperneck", "head", "lclavicle", "lhumerus", "lradius", "lwrist", "lhand",
+                           "lfingers", "lthumb", "rclavicle", "rhumerus", "rradius", "rwrist", "rhand",
+                           "rfingers", "rthumb"})
+    EXPECT_GE(mj_name2id(m, mjOBJ_BODY, bone), 0) << bone;
+  double mass = 0;
+  for (int b = 1; b < m->nbody; ++b) mass += m->body_mass[b];
+  EXPECT_NEAR(mass, 65.0, 0.5);
+  EXPECT_DOUBLE_EQ(m->opt.timestep, 0.005);
+  EXPECT_DOUBLE_EQ(env.control_timestep(), 0.03);
+  EXPECT_EQ(env.episode_length(), 334);
+  EXPECT_EQ(env.obs_dim(), 137);
+  EXPECT_EQ(env.act_dim(), 56);
+  EXPECT_EQ(env.feature_names().size(), 19u);
+}
+
+TEST(Humanoid, StandsInItsRestPoseOnItsFeetAboutOnePointSevenMetresTall) {
+  HumanoidEnv env;
+  env.reset(0);
+  const mjModel* m = env.model();
+  const mjData* d = env.data();
+  const int head = mj_name2id(m, mjOBJ_GEOM, "head");
+  EXPECT_NEAR(d->geom_xpos[3 * head + 2] + m->geom_size[3 * head], 1.70, 0.02);
+  EXPECT_GT(d->ncon, 0);
+  EXPECT_FALSE(env.off_feet_contact());
+  EXPECT_FALSE(env.fallen());
+}
+
+TEST(Humanoid, StaysUpUnderAPdHoldAndFallsWithoutTorque) {
+  const int two_seconds = 67;
+  for (std::uint64_t seed : {1, 2, 3}) {
+    HumanoidEnv held;
+    held.reset(seed);
+    std::vector<double> f(held.feature_names().size());
+    for (int t = 0; t < two_seconds; ++t) {
+      const StepOutcome out = held.step(pd_hold(held).data());
+      held.features(f.data());
+      ASSERT_FALSE(out.done()) << "seed " << seed << " step " << t;
+      ASSERT_EQ(f[3], 0.0);
+    }
+    EXPECT_GT(held.root_height(), 0.9) << seed;
+    EXPECT_GT(held.up_in_root()[2], 0.98) << seed;
+
+    HumanoidEnv limp;
+    limp.reset(seed);
+    const std::vector<float> zero(HumanoidEnv::kHinges, 0.f);
+    StepOutcome out;
+    int steps = 0;
+    do {
+      out = limp.step(zero.data());
+      ++steps;
+    } while (!out.done());
+    limp.features(f.data());
+    // The limp body collapses well within two seconds, and the step that ends it is a fall.
+    EXPECT_TRUE(out.terminated) << seed;
+    EXPECT_LT(steps, two_seconds) << seed;
+    EXPECT_EQ(f[3], 1.0) << seed;
+  }
+}
+
+TEST(Humanoid, ALyingBodyIsFallenByItsContactsAlone) {
+  HumanoidOptions o;
+  o.terminate_on_fall = false;
+  HumanoidEnv env(o);
+  env.reset(4);
+  const std::vector<float> zero(HumanoidEnv::kHinges, 0.f);
+  for (int t = 0; t < 150; ++t) env.step(zero.data());
+  EXPECT_TRUE(env.off_feet_contact());
+  // Find by hand a floor contact of a geom on neither foot.
+  const mjModel* m = env.model();
+  const mjData* d = env.data();
+  const int floor = mj_name2id(m, mjOBJ_GEOM, "floor");
+  bool found = false;
+  for (int i = 0; i < d->ncon; ++i) {
+    const int other = d->contact[i].geom1 == floor ? d->contact[i].geom2 : d->contact[i].geom1;
+    const std::string body = mj_id2name(m, mjOBJ_BODY, m->geom_bodyid[other]);
+    found = found || (body.find("foot") == std::string::npos && body.find("toes") == std::string::npos);
+  }
+  EXPECT_TRUE(found);
+  EXPECT_TRUE(env.fallen());
+}
+
+TEST(Humanoid, SameSeedSameEpisodeBitForBit) {
+  HumanoidEnv a, b;
+  a.reset(21);
+  b.reset(21);
+  std::vector<double> fa(a.feature_names().size()), fb(fa.size());
+  for (int t = 0; t < 60; ++t) {
+    const StepOutcome oa = a.step(wobble(t).data());
+    const StepOutcome ob = b.step(wobble(t).data());
+    EXPECT_EQ(oa.reward, ob.reward);
+    EXPECT_EQ(oa.terminated, ob.terminated);
+    ASSERT_EQ(a.observation(), b.observation()) << "step " << t;
+    a.features(fa.data());
+    b.features(fb.data());
+    ASSERT_EQ(fa, fb);
+  }
+  a.reset(21);
+  b.reset(22);
+  EXPECT_NE(a.observation(), b.observation());
+  auto copy = a.clone();
+  copy->reset(21);
+  EXPECT_EQ(copy->observation(), a.observation());
+}
+
+TEST(Humanoid, ObservationAndFeaturesMatchTheSimulatorStateByHand) {
+  HumanoidOptions o;
+  o.terminate_on_fall = false;
+  HumanoidEnv env(o);
+  env.reset(5);
+  // Turn the body (yaw 0.8 rad, then pitch 0.3 rad) and push it, so that no frame is the
+  // world's and no velocity is zero (the test reaches into the simulator state on purpose).
+  auto* d = const_cast<mjData*>(env.data());
+  const mjModel* m = env.model();
+  double yaw[4], pitch[4];
+  const double z[3] = {0, 0, 1}, y[3] = {0, 1, 0};
+  mju_axisAngle2Quat(yaw, z, 0.8);
+  mju_axisAngle2Quat(pitch, y, 0.3);
+  mju_mulQuat(d->qpos + 3, yaw, pitch);
+  d->qpos[2] += 0.3;
+  const double push[6] = {0.5, -0.3, 0.2, 0.1, -0.1, 0.2};  // linear (world), angular (root frame)
+  std::copy(push, push + 6, d->qvel);
+  mj_forward(m, d);
+  for (int t = 0; t < 5; ++t) env.step(wobble(t).data());
+
+  const auto obs = env.observation();
+  std::vector<double> f(env.feature_names().size());
+  env.features(f.data());
+  const int root = mj_name2id(m, mjOBJ_BODY, "root");
+  const double* r = d->xmat + 9 * root;
+  auto in_root = [&](const double* world) {
+    double out[3];
+    mju_mulMatTVec(out, r, world, 3, 3);
+    return std::vector<double>(out, out + 3);
+  };
+  for (const auto& hinge : expected_hinges()) {
+    const int j = mj_name2id(m, mjOBJ_JOINT, hinge.c_str());
+    EXPECT_FLOAT_EQ(obs[j - 1], static_cast<float>(d->qpos[m->jnt_qposadr[j]]));
+    EXPECT_FLOAT_EQ(obs[56 + j - 1], static_cast<float>(d->qvel[m->jnt_dofadr[j]]));
+  }
+  EXPECT_FLOAT_EQ(obs[112], static_cast<float>(d->xpos[3 * root + 2]));
+  const auto up = in_root(z);
+  EXPECT_GT(std::abs(up[0]), 0.1);  // the pitch shows in the root frame
+  double velocity[6];  // angular then linear, at the root's frame origin, in the root frame
+  mj_objectVelocity(m, d, mjOBJ_XBODY, root, velocity, 1);
+  EXPECT_GT(std::abs(velocity[3]) + std::abs(velocity[4]), 0.1);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(obs[113 + k], up[k], 1e-6);
+    EXPECT_NEAR(obs[116 + k], velocity[3 + k], 1e-5);
+    EXPECT_NEAR(obs[119 + k], velocity[k], 1e-5);
+  }
+  for (std::size_t e = 0; e < HumanoidEnv::kEndEffectors.size(); ++e) {
+    const char* name = HumanoidEnv::kEndEffectors[e];
+    const int body = mj_name2id(m, mjOBJ_BODY, name);
+    double offset[3];
+    for (int k = 0; k < 3; ++k) offset[k] = d->xpos[3 * body + k] - d->xpos[3 * root + k];
+    const auto local = in_root(offset);
+    for (int k = 0; k < 3; ++k) {
+      const std::string feature = std::string(name) + "_" + "xyz"[k];
+      EXPECT_EQ(env.feature_names()[4 + 3 * e + k], feature);
+      EXPECT_EQ(env.observation_spec().names[122 + 3 * e + k], feature);
+      EXPECT_NEAR(f[4 + 3 * e + k], local[k], 1e-12) << feature;
+      EXPECT_FLOAT_EQ(obs[122 + 3 * e + k], static_cast<float>(local[k])) << feature;
+    }
+  }
+  // Heading: the root's x axis (the first column of its rotation) on the floor, turned well away
+  // from world x by the yaw.
+  const double heading = std::atan2(r[3], r[0]);
+  EXPECT_NEAR(f[1], heading, 1e-12);
+  EXPECT_GT(heading, 0.3);
+  // Forward speed: the centre of mass's velocity, the mass-weighted mean of every body's own.
+  double momentum[2] = {0, 0}, mass = 0;
+  for (int b = 1; b < m->nbody; ++b) {
+    double v[6];
+    mj_objectVelocity(m, d, mjOBJ_BODY, b, v, 0);
+    for (int k = 0; k < 2; ++k) momentum[k] += m->body_mass[b] * v[3 + k];
+    mass += m->body_mass[b];
+  }
+  EXPECT_NEAR(f[0], (momentum[0] * std::cos(heading) + momentum[1] * std::sin(heading)) / mass, 1e-9);
+  EXPECT_NEAR(f[2], d->xpos[3 * root + 2], 1e-12);
+}
+
+TEST(Humanoid, RewardMatchesHandComputedValues) {
+  const std::vector<float> zero(56, 0.f), full(56, 3.f);  // clipped to 1
+  EXPECT_DOUBLE_EQ(HumanoidEnv::task_reward(1.2, 1.2, 0.95, 1.0, zero.data(), 56), 1.0);
+  // Standing still with the 1.2 m/s target: the alive weight and 1 / (1 + 2.4^2) of the rest.
+  EXPECT_NEAR(HumanoidEnv::task_reward(0.0, 1.2, 0.95, 1.0, zero.data(), 56), 0.2 + 0.8 / (1 + 5.76), 1e-12);
+  // Half height credit at 0.725 m, half uprightness lying on the side, the full control cost.
+  EXPECT_NEAR(HumanoidEnv::task_reward(1.2, 1.2, 0.725, 1.0, zero.data(), 56), 0.5, 1e-12);
+  EXPECT_NEAR(HumanoidEnv::task_reward(1.2, 1.2, 0.95, 0.0, zero.data(), 56), 0.5, 1e-12);
+  EXPECT_NEAR(HumanoidEnv::task_reward(1.2, 1.2, 0.95, 1.0, full.data(), 56), 0.95, 1e-12);
+  EXPECT_NEAR(HumanoidEnv::task_reward(1.2, 1.2, 0.5, 1.0, zero.data(), 56), 0.0, 1e-12);
+  EXPECT_GT(HumanoidEnv::task_reward(1.0, 1.2, 0.95, 1, zero.data(), 56),
+            HumanoidEnv::task_reward(0.5, 1.2, 0.95, 1, zero.data(), 56));
+}
+
+TEST(Humanoid, IsABuiltInTaskWithAStyleContext) {
+  EnvRequest request;
+  request.task = "humanoid";
+  request.episode_length = 50;
+  auto env = make_env(request);
+  EXPECT_EQ(env->id(), "humanoid");
+  EXPECT_EQ(env->episode_length(), 50);
+  EXPECT_EQ(env->context_names(), std::vector<std::string>{"style"});
+  env->set_context({3.0});
+  EXPECT_THROW(env->set_context({1.0, 2.0}), std::invalid_argument);
+  EXPECT_EQ(env->clone()->context(), std::vector<double>{3.0});
+  const auto tasks = builtin_tasks();
+  EXPECT_NE(std::find(tasks.begin(), tasks.end(), "humanoid"), tasks.end());
+}
+
+}  // namespace
+}  // namespace vaegail
