@@ -78,8 +78,7 @@ void validate_episode(const Episode& e, const DemoHeader& h, const std::string& 
 DemoWriter::DemoWriter(std::string path, DemoHeader header)
     : path_(std::move(path)), tmp_path_(temporary_path_for(path_)), header_(std::move(header)) {
   h5::silence_errors();
-  file_ = H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (file_ < 0) throw DataError(path_ + ": cannot create file (is the folder there and writable?)");
+  file_ = h5::create_file(tmp_path_, path_).release();
 }
 
 DemoWriter::~DemoWriter() {
@@ -141,10 +140,12 @@ void DemoWriter::commit() {
   h5::write_string_attr(root, "action_names", json_list(header_.action_names));
   h5::write_string_attr(root, "feature_names", json_list(header_.feature_names));
   h5::write_string_attr(root, "context_names", json_list(header_.context_names));
-  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw DataError(path_ + ": cannot flush file");
-  close_file();
-  if (std::rename(tmp_path_.c_str(), path_.c_str()) != 0)
-    throw DataError(path_ + ": cannot move finished file into place");
+  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw DataError(h5::with_cause(path_ + ": cannot flush file"));
+  // Closing writes what HDF5 still caches: on a full disk this is where it fails.
+  const herr_t closed = H5Fclose(file_);
+  file_ = -1;
+  if (closed < 0) throw DataError(h5::with_cause(path_ + ": cannot close file"));
+  move_into_place(tmp_path_, path_);
   committed_ = true;
 }
 
@@ -155,9 +156,9 @@ template <typename T>
 void read_dataset(hid_t group, const std::string& name, H5T_class_t cls, hid_t mem_type,
                   const std::vector<hsize_t>& expected, std::vector<T>& out, const std::string& where) {
   const std::string field = where + "/" + name;
-  if (!h5::has_link(group, name)) throw DataError(field + ": missing dataset");
+  h5::require_link(group, name, field, "dataset");
   h5::Handle ds(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose);
-  if (!ds.valid()) throw DataError(field + ": cannot open dataset");
+  if (!ds.valid()) throw DataError(h5::with_cause(field + ": cannot open dataset"));
   h5::Handle type(H5Dget_type(ds.get()), H5Tclose);
   const H5T_class_t found = H5Tget_class(type.get());
   const bool is_bool = cls == H5T_ENUM;
@@ -169,33 +170,33 @@ void read_dataset(hid_t group, const std::string& name, H5T_class_t cls, hid_t m
   const auto dims = h5::dataset_shape(ds.get());
   if (dims != expected)
     throw DataError(field + ": shape " + shape_text(dims) + ", expected " + shape_text(expected));
-  hsize_t n = 1;
-  for (hsize_t d : dims) n *= d;
-  out.resize(n);
+  out.resize(h5::checked_elements(dims, sizeof(T), field));
   // 1-byte booleans are read as stored: HDF5 does not convert enums to integers.
   const hid_t read_type = is_bool ? type.get() : mem_type;
-  if (n > 0 && H5Dread(ds.get(), read_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-    throw DataError(field + ": cannot read (corrupt data?)");
+  if (!out.empty() && H5Dread(ds.get(), read_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw DataError(h5::with_cause(field + ": cannot read"));
 }
 
 std::vector<hsize_t> leading_dims(hid_t group, const std::string& name, const std::string& where) {
-  if (!h5::has_link(group, name)) throw DataError(where + "/" + name + ": missing dataset");
+  h5::require_link(group, name, where + "/" + name, "dataset");
   h5::Handle ds(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose);
-  if (!ds.valid()) throw DataError(where + "/" + name + ": cannot open dataset");
+  if (!ds.valid()) throw DataError(h5::with_cause(where + "/" + name + ": cannot open dataset"));
   return h5::dataset_shape(ds.get());
 }
 
 Episode read_episode(hid_t file, int index, const DemoHeader& h, const std::string& path) {
   const std::string name = "episode_" + std::to_string(index);
   const std::string where = path + ": " + name;
-  if (!h5::has_link(file, name)) throw DataError(where + ": missing episode group");
+  h5::require_link(file, name, where, "episode group");
   h5::Handle group(H5Gopen2(file, name.c_str(), H5P_DEFAULT), H5Gclose);
-  if (!group.valid()) throw DataError(where + ": cannot open episode group");
+  if (!group.valid()) throw DataError(h5::with_cause(where + ": cannot open episode group"));
   const hid_t g = group.get();
   const auto reward_dims = leading_dims(g, "rewards", where);
   if (reward_dims.size() != 1)
     throw DataError(where + "/rewards: shape " + shape_text(reward_dims) + ", expected [T]");
+  // Bounds T before T + 1 and T * width are formed from it.
   const hsize_t T = reward_dims[0];
+  h5::checked_elements({T}, sizeof(double), where + "/rewards");
   Episode e;
   read_dataset(g, "rewards", H5T_FLOAT, H5T_NATIVE_DOUBLE, {T}, e.rewards, where);
   read_dataset(g, "observations", H5T_FLOAT, H5T_NATIVE_FLOAT, {T + 1, hsize_t(h.obs_dim())}, e.observations, where);
@@ -205,8 +206,9 @@ Episode read_episode(hid_t file, int index, const DemoHeader& h, const std::stri
   const size_t nf = h.feature_names.size();
   e.features.resize((T + 1) * nf);
   if (nf > 0) {
-    if (!h5::has_link(g, "features")) throw DataError(where + "/features: missing group");
+    h5::require_link(g, "features", where + "/features", "group");
     h5::Handle fg(H5Gopen2(g, "features", H5P_DEFAULT), H5Gclose);
+    if (!fg.valid()) throw DataError(h5::with_cause(where + "/features: cannot open group"));
     std::vector<double> column;
     for (size_t f = 0; f < nf; ++f) {
       read_dataset(fg.get(), h.feature_names[f], H5T_FLOAT, H5T_NATIVE_DOUBLE, {T + 1}, column, where + "/features");
@@ -243,7 +245,7 @@ DemoSet read_demos(const std::string& path) {
   }
   if (H5Fis_hdf5(path.c_str()) <= 0) throw DataError(path + ": not an HDF5 file");
   h5::Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (!file.valid()) throw DataError(path + ": cannot open HDF5 file (corrupt?)");
+  if (!file.valid()) throw DataError(h5::with_cause(path + ": cannot open HDF5 file"));
   const hid_t root = file.get();
   const std::string where = path + ": /";
   if (h5::read_string_attr(root, "format", where) != kFormat)
@@ -263,7 +265,10 @@ DemoSet read_demos(const std::string& path) {
   h.feature_names = parse_list(h5::read_string_attr(root, "feature_names", where), where + "feature_names");
   h.context_names = parse_list(h5::read_string_attr(root, "context_names", where), where + "context_names");
   const auto total = h5::read_double_attr(root, "total_episodes", where);
-  if (total.size() != 1 || total[0] < 0) throw DataError(path + ": bad attribute total_episodes");
+  // Each episode is a group under the root, so the count cannot exceed the root's links.
+  if (total.size() != 1 || !(total[0] >= 0) || total[0] > double(h5::link_count(root)) ||
+      total[0] != std::floor(total[0]))
+    throw DataError(path + ": bad attribute total_episodes");
   const int episodes = static_cast<int>(total[0]);
   for (int i = 0; i < episodes; ++i) set.episodes.push_back(read_episode(root, i, h, path));
   return set;

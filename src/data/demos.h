@@ -13,8 +13,9 @@
 //   /episode_{i}/features/{name} float64 [T+1]  one per feature, aligned with observations
 //   /episode_{i}            attrs: id, total_steps, expert_id, context (float64 [k]), seed,
 //                                  plus any extra float64 scalars (achieved_speed, held_out...)
-// Datasets up to 8 KiB are stored compact (in their object header); larger ones are chunked,
-// shuffled and deflated.
+// Written in the HDF5 1.10 file format (checksummed metadata); every dataset is one chunk,
+// shuffled, deflated and Fletcher-32 checksummed; strings are fixed-length. A flipped byte
+// anywhere the checksums cover is rejected on reading rather than loaded.
 #pragma once
 
 #include <cstdint>
@@ -63,8 +64,9 @@ struct DemoSet {
   std::vector<Episode> episodes;
 };
 
-// Writes to a temporary file beside `path`; commit() renames it into place. Destroying an
-// uncommitted writer (an exception, a kill) removes the temporary file and leaves `path` as it was.
+// Writes to a temporary file beside `path`; commit() syncs it to disk and renames it into place.
+// Destroying an uncommitted writer (an exception, a kill) removes the temporary file and leaves
+// `path` as it was; so does a write that fails (a full disk), whose error names `path`.
 class DemoWriter {
  public:
   DemoWriter(std::string path, DemoHeader header);
@@ -91,7 +93,9 @@ class DemoWriter {
 // Checks an episode against a header; throws DataError "where: field: problem".
 void validate_episode(const Episode& episode, const DemoHeader& header, const std::string& where);
 
-// Reads and validates a whole file. Throws DataError on anything missing or malformed.
+// Reads and validates a whole file. Throws DataError on anything missing, malformed or failing
+// a checksum; sizes are checked before anything is allocated for them. Files of other tools
+// (h5py: contiguous or chunked, gzip, extra groups, variable-length strings) read as well.
 DemoSet read_demos(const std::string& path);
 
 }  // namespace vaegail

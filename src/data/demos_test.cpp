@@ -4,6 +4,8 @@
 #include <hdf5.h>
 
 #include <chrono>
+#include <cstdint>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,54 +13,11 @@
 #include <limits>
 #include <thread>
 
+#include "data/demos_test_support.h"
 #include "util/atomic_file.h"
 
 namespace vaegail {
 namespace {
-
-DemoHeader header() {
-  DemoHeader h;
-  h.env_id = "toy";
-  h.control_timestep = 0.025;
-  h.observation_names = {"x", "v"};
-  h.action_names = {"f"};
-  h.feature_names = {"speed"};
-  h.context_names = {"target_speed"};
-  return h;
-}
-
-Episode episode(int T, float offset) {
-  Episode e;
-  for (int t = 0; t <= T; ++t) {
-    e.observations.push_back(offset + t);
-    e.observations.push_back(-offset * t);
-    e.features.push_back(0.1 * t + offset);
-  }
-  for (int t = 0; t < T; ++t) {
-    e.actions.push_back(0.5f * t);
-    e.rewards.push_back(1.0 / (t + 1));
-    e.terminations.push_back(t == T - 1 && offset > 1);
-    e.truncations.push_back(t == T - 1 && offset <= 1);
-  }
-  e.expert_id = "expert_" + std::to_string(static_cast<int>(offset));
-  e.context = {offset};
-  e.seed = 0xFFFFFFFFFFFFFFF1ULL;  // beyond double precision: must survive exactly
-  e.attributes["achieved_speed"] = offset * 0.5;
-  return e;
-}
-
-std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("vaegail_demos_" + name + ".h5")).string();
-}
-
-std::string write_sample(const std::string& name) {
-  const std::string path = temp_path(name);
-  DemoWriter w(path, header());
-  w.append(episode(5, 1));
-  w.append(episode(3, 2));
-  w.commit();
-  return path;
-}
 
 // Replaces episode_1/<field> with a dataset of the given type, shape and values.
 void replace_dataset(const std::string& path, const std::string& field, hid_t type,
@@ -89,27 +48,8 @@ void expect_error(const std::string& path, const std::vector<std::string>& fragm
 }
 
 TEST(Demos, RoundTripKeepsEverything) {
-  const std::string path = write_sample("roundtrip");
-  const DemoSet set = read_demos(path);
-  EXPECT_EQ(set.header.env_id, "toy");
-  EXPECT_EQ(set.header.observation_names, header().observation_names);
-  EXPECT_EQ(set.header.context_names, header().context_names);
-  EXPECT_DOUBLE_EQ(set.header.control_timestep, 0.025);
-  ASSERT_EQ(set.episodes.size(), 2u);
-  for (int i = 0; i < 2; ++i) {
-    const Episode expected = episode(i == 0 ? 5 : 3, i + 1.f);
-    const Episode& got = set.episodes[i];
-    EXPECT_EQ(got.observations, expected.observations);
-    EXPECT_EQ(got.actions, expected.actions);
-    EXPECT_EQ(got.rewards, expected.rewards);
-    EXPECT_EQ(got.terminations, expected.terminations);
-    EXPECT_EQ(got.truncations, expected.truncations);
-    EXPECT_EQ(got.features, expected.features);
-    EXPECT_EQ(got.expert_id, expected.expert_id);
-    EXPECT_EQ(got.context, expected.context);
-    EXPECT_EQ(got.seed, expected.seed);
-    EXPECT_EQ(got.attributes, expected.attributes);
-  }
+  const std::string path = write_toy_file("roundtrip");
+  EXPECT_EQ(toy_contents_difference(read_demos(path)), "");
   std::remove(path.c_str());
 }
 
@@ -119,52 +59,52 @@ std::string file_bytes(const std::string& path) {
 }
 
 TEST(Demos, TheSameEpisodesWrittenSecondsApartGiveTheSameBytes) {
-  const std::string first = file_bytes(write_sample("bytes_a"));
+  const std::string first = file_bytes(write_toy_file("bytes_a"));
   std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // HDF5 times tick in seconds
-  const std::string second = file_bytes(write_sample("bytes_a"));
+  const std::string second = file_bytes(write_toy_file("bytes_a"));
   ASSERT_FALSE(first.empty());
   EXPECT_TRUE(first == second) << "files differ: object timestamps?";
-  std::remove(temp_path("bytes_a").c_str());
+  std::remove(temp_demo_path("bytes_a").c_str());
 }
 
 TEST(Demos, UncommittedWriterLeavesNothingBehind) {
-  const std::string path = temp_path("uncommitted");
+  const std::string path = temp_demo_path("uncommitted");
   std::remove(path.c_str());
   {
-    DemoWriter w(path, header());
-    w.append(episode(4, 1));
+    DemoWriter w(path, toy_header());
+    w.append(toy_episode(4, 1));
   }
   EXPECT_FALSE(std::filesystem::exists(path));
   EXPECT_FALSE(std::filesystem::exists(temporary_path_for(path)));
 }
 
 TEST(Demos, WriterRejectsMalformedEpisodes) {
-  DemoWriter w(temp_path("reject"), header());
-  Episode bad = episode(4, 1);
+  DemoWriter w(temp_demo_path("reject"), toy_header());
+  Episode bad = toy_episode(4, 1);
   bad.actions.pop_back();
   EXPECT_THROW(w.append(bad), DataError);
-  bad = episode(4, 1);
+  bad = toy_episode(4, 1);
   bad.observations[3] = std::numeric_limits<float>::quiet_NaN();
   EXPECT_THROW(w.append(bad), DataError);
 }
 
 TEST(Demos, MissingFileAndNonHdf5FileAreRejected) {
   expect_error("/nonexistent/demos.h5", {"/nonexistent/demos.h5", "no such file"});
-  const std::string path = temp_path("text");
+  const std::string path = temp_demo_path("text");
   std::ofstream(path) << "not hdf5 at all";
   expect_error(path, {path, "not an HDF5 file"});
   std::remove(path.c_str());
 }
 
 TEST(Demos, MissingDatasetIsNamed) {
-  const std::string path = write_sample("missing");
+  const std::string path = write_toy_file("missing");
   replace_dataset(path, "actions", 0, {}, nullptr);
   expect_error(path, {path, "episode_1/actions", "missing dataset"});
   std::remove(path.c_str());
 }
 
 TEST(Demos, WrongShapeIsNamed) {
-  const std::string path = write_sample("shape");
+  const std::string path = write_toy_file("shape");
   std::vector<float> values(3 * 2, 0.f);  // 3 actions of width 2 instead of width 1
   replace_dataset(path, "actions", H5T_NATIVE_FLOAT, {3, 2}, values.data());
   expect_error(path, {"episode_1/actions", "shape [3, 2], expected [3, 1]"});
@@ -172,7 +112,7 @@ TEST(Demos, WrongShapeIsNamed) {
 }
 
 TEST(Demos, LengthMismatchIsNamed) {
-  const std::string path = write_sample("length");
+  const std::string path = write_toy_file("length");
   std::vector<float> values(3 * 2, 0.f);  // T rows of observations instead of T+1
   replace_dataset(path, "observations", H5T_NATIVE_FLOAT, {3, 2}, values.data());
   expect_error(path, {"episode_1/observations", "shape [3, 2], expected [4, 2]"});
@@ -180,7 +120,7 @@ TEST(Demos, LengthMismatchIsNamed) {
 }
 
 TEST(Demos, WrongDtypeIsNamed) {
-  const std::string path = write_sample("dtype");
+  const std::string path = write_toy_file("dtype");
   std::vector<int> values(3, 1);
   replace_dataset(path, "rewards", H5T_NATIVE_INT, {3}, values.data());
   expect_error(path, {"episode_1/rewards", "wrong dtype"});
@@ -188,7 +128,7 @@ TEST(Demos, WrongDtypeIsNamed) {
 }
 
 TEST(Demos, NonFiniteValuesAreNamed) {
-  const std::string path = write_sample("nan");
+  const std::string path = write_toy_file("nan");
   std::vector<float> values(3, 0.f);
   values[2] = std::numeric_limits<float>::infinity();
   replace_dataset(path, "actions", H5T_NATIVE_FLOAT, {3, 1}, values.data());
@@ -197,7 +137,7 @@ TEST(Demos, NonFiniteValuesAreNamed) {
 }
 
 TEST(Demos, TruncatedFileIsRejected) {
-  const std::string path = write_sample("cut");
+  const std::string path = write_toy_file("cut");
   const auto size = std::filesystem::file_size(path);
   std::filesystem::resize_file(path, size / 2);
   try {
@@ -206,6 +146,242 @@ TEST(Demos, TruncatedFileIsRejected) {
   } catch (const DataError& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos);
   }
+  std::remove(path.c_str());
+}
+
+// ---- files that check themselves --------------------------------------------------------
+
+std::vector<std::string> object_paths(hid_t file, H5O_type_t type) {
+  struct Visit {
+    H5O_type_t type;
+    std::vector<std::string> paths;
+  } visit{type, {}};
+  H5Ovisit2(file, H5_INDEX_NAME, H5_ITER_INC,
+            [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
+              auto* v = static_cast<Visit*>(data);
+              if (info->type == v->type) v->paths.emplace_back(name);
+              return 0;
+            },
+            &visit, H5O_INFO_BASIC);
+  return visit.paths;
+}
+
+bool has_variable_length_string_attr(hid_t object) {
+  bool found = false;
+  hsize_t position = 0;
+  H5Aiterate2(object, H5_INDEX_NAME, H5_ITER_INC, &position,
+              [](hid_t obj, const char* name, const H5A_info_t*, void* out) -> herr_t {
+                const hid_t attr = H5Aopen(obj, name, H5P_DEFAULT), type = H5Aget_type(attr);
+                if (H5Tis_variable_str(type) > 0) *static_cast<bool*>(out) = true;
+                H5Tclose(type);
+                H5Aclose(attr);
+                return 0;
+              },
+              &found);
+  return found;
+}
+
+TEST(Demos, WrittenFilesChecksumTheirMetadataAndEveryValue) {
+  const std::string path = write_toy_file("checksums");
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  H5F_info2_t info;
+  ASSERT_GE(H5Fget_info2(f, &info), 0);
+  EXPECT_GE(info.super.version, 3u) << "superblock without checksum: not the 1.10 format";
+  const auto datasets = object_paths(f, H5O_TYPE_DATASET);
+  EXPECT_EQ(datasets.size(), 2u * 6);  // 5 arrays and 1 feature per episode
+  for (const auto& name : datasets) {
+    const hid_t ds = H5Dopen2(f, name.c_str(), H5P_DEFAULT), plist = H5Dget_create_plist(ds);
+    EXPECT_EQ(H5Pget_layout(plist), H5D_CHUNKED) << name;
+    unsigned flags = 0;
+    size_t n = 0;
+    unsigned filter_info = 0;
+    EXPECT_GE(H5Pget_filter_by_id2(plist, H5Z_FILTER_FLETCHER32, &flags, &n, nullptr, 0, nullptr, &filter_info), 0)
+        << name << " has no Fletcher-32 checksum";
+    H5Pclose(plist);
+    H5Dclose(ds);
+  }
+  for (const auto& group : object_paths(f, H5O_TYPE_GROUP)) {
+    const hid_t g = H5Gopen2(f, group.c_str(), H5P_DEFAULT);
+    EXPECT_FALSE(has_variable_length_string_attr(g)) << group << ": a string in the global heap";
+    H5Gclose(g);
+  }
+  H5Fclose(f);
+  std::remove(path.c_str());
+}
+
+// Overwrites `count` bytes at `offset` with their complement.
+void flip_bytes(const std::string& path, std::uint64_t offset, int count) {
+  std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+  for (int i = 0; i < count; ++i) {
+    file.seekg(static_cast<std::streamoff>(offset + i));
+    const char byte = static_cast<char>(~file.get());
+    file.seekp(static_cast<std::streamoff>(offset + i));
+    file.put(byte);
+  }
+}
+
+// Where the stored (filtered) bytes of a one-chunk dataset lie in the file.
+std::pair<haddr_t, hsize_t> chunk_extent(const std::string& path, const std::string& dataset) {
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t ds = H5Dopen2(f, dataset.c_str(), H5P_DEFAULT), space = H5Dget_space(ds);
+  hsize_t offset[2];
+  unsigned filter_mask = 0;
+  haddr_t address = HADDR_UNDEF;
+  hsize_t size = 0;
+  H5Dget_chunk_info(ds, space, 0, offset, &filter_mask, &address, &size);
+  H5Sclose(space);
+  H5Dclose(ds);
+  H5Fclose(f);
+  return {address, size};
+}
+
+TEST(Demos, AFlippedByteAmongTheValuesIsRejectedNamingTheDataset) {
+  const std::string path = write_toy_file("flip_value");
+  const auto [address, size] = chunk_extent(path, "episode_1/observations");
+  ASSERT_NE(address, HADDR_UNDEF);
+  flip_bytes(path, address + size / 2, 1);
+  expect_error(path, {path, "episode_1/observations", "Fletcher32"});
+  std::remove(path.c_str());
+}
+
+TEST(Demos, AFlippedByteInTheMetadataIsRejected) {
+  const std::string path = write_toy_file("flip_superblock");
+  flip_bytes(path, 20, 1);  // inside the superblock, before its checksum
+  expect_error(path, {path});
+  std::remove(path.c_str());
+}
+
+TEST(Demos, ACorruptDimensionIsRejectedBeforeAnythingIsAllocated) {
+  const std::string path = write_toy_file("huge");
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  H5Ldelete(f, "episode_1/rewards", H5P_DEFAULT);
+  const hsize_t steps = hsize_t(1) << 40;  // 8 TiB of rewards, never allocated in the file
+  const hid_t space = H5Screate_simple(1, &steps, nullptr);
+  H5Dclose(H5Dcreate2(f, "episode_1/rewards", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Sclose(space);
+  H5Fclose(f);
+  expect_error(path, {path, "episode_1/rewards", "corrupt dimensions"});
+  std::remove(path.c_str());
+}
+
+// ---- files of other tools ------------------------------------------------------------------
+
+// The toy file as other writers lay it out: the earliest file format (no checksums),
+// datasets contiguous, compact or gzip-chunked in turn, variable-length strings, integer
+// counts, and objects the reader does not know.
+class OtherLayoutWriter {
+ public:
+  explicit OtherLayoutWriter(const std::string& path)
+      : file_(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)) {}
+  ~OtherLayoutWriter() { H5Fclose(file_); }
+  hid_t file() const { return file_; }
+
+  void dataset(hid_t parent, const char* name, hid_t type, std::vector<hsize_t> dims, const void* data) {
+    const hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+    const hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    const int layout = next_layout_++ % 3;
+    if (layout == 1) H5Pset_layout(plist, H5D_COMPACT);
+    if (layout == 2) {
+      H5Pset_chunk(plist, static_cast<int>(dims.size()), dims.data());
+      H5Pset_deflate(plist, 6);
+    }
+    const hid_t ds = H5Dcreate2(parent, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT);
+    H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+    H5Dclose(ds);
+    H5Pclose(plist);
+    H5Sclose(space);
+  }
+
+  static void string_attr(hid_t object, const char* name, const std::string& value) {
+    const hid_t type = H5Tcopy(H5T_C_S1), space = H5Screate(H5S_SCALAR);
+    H5Tset_size(type, H5T_VARIABLE);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+    const hid_t attr = H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+    const char* text = value.c_str();
+    H5Awrite(attr, type, &text);
+    H5Aclose(attr);
+    H5Sclose(space);
+    H5Tclose(type);
+  }
+
+  static void attr(hid_t object, const char* name, hid_t type, const void* value, hsize_t n = 0) {
+    const hid_t space = n ? H5Screate_simple(1, &n, nullptr) : H5Screate(H5S_SCALAR);
+    const hid_t a = H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, type, value);
+    H5Aclose(a);
+    H5Sclose(space);
+  }
+
+ private:
+  hid_t file_;
+  int next_layout_ = 0;
+};
+
+std::string write_toy_file_in_other_layout(const std::string& name) {
+  const std::string path = temp_demo_path(name);
+  OtherLayoutWriter w(path);
+  const hid_t root = w.file();
+  w.string_attr(root, "format", "vaegail-demos");
+  const long long version = 1, episodes = 2, steps = 8;
+  w.attr(root, "format_version", H5T_NATIVE_LLONG, &version);
+  w.attr(root, "total_episodes", H5T_NATIVE_LLONG, &episodes);
+  w.attr(root, "total_steps", H5T_NATIVE_LLONG, &steps);
+  w.string_attr(root, "env_id", "toy");
+  const double dt = 0.025;
+  w.attr(root, "control_timestep", H5T_NATIVE_DOUBLE, &dt);
+  w.string_attr(root, "observation_names", R"(["x", "v"])");
+  w.string_attr(root, "action_names", R"(["f"])");
+  w.string_attr(root, "feature_names", R"(["speed"])");
+  w.string_attr(root, "context_names", R"(["target_speed"])");
+  const hid_t extras = H5Gcreate2(root, "extras", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const double note[3] = {1, 2, 3};
+  w.dataset(extras, "notes", H5T_NATIVE_DOUBLE, {3}, note);
+  H5Gclose(extras);
+  const hid_t boolean = H5Tenum_create(H5T_NATIVE_INT8);
+  const signed char no = 0, yes = 1;
+  H5Tenum_insert(boolean, "FALSE", &no);
+  H5Tenum_insert(boolean, "TRUE", &yes);
+  for (int i = 0; i < 2; ++i) {
+    const Episode e = toy_file_episode(i);
+    const hsize_t T = e.rewards.size();
+    const hid_t g = H5Gcreate2(root, ("episode_" + std::to_string(i)).c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    w.dataset(g, "observations", H5T_NATIVE_FLOAT, {T + 1, 2}, e.observations.data());
+    w.dataset(g, "actions", H5T_NATIVE_FLOAT, {T, 1}, e.actions.data());
+    w.dataset(g, "rewards", H5T_NATIVE_DOUBLE, {T}, e.rewards.data());
+    w.dataset(g, "terminations", boolean, {T}, e.terminations.data());
+    w.dataset(g, "truncations", boolean, {T}, e.truncations.data());
+    w.dataset(g, "infos", H5T_NATIVE_DOUBLE, {T}, e.rewards.data());  // unknown to the reader
+    const hid_t features = H5Gcreate2(g, "features", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    w.dataset(features, "speed", H5T_NATIVE_DOUBLE, {T + 1}, e.features.data());
+    H5Gclose(features);
+    const long long id = i, total = static_cast<long long>(T);
+    w.attr(g, "id", H5T_NATIVE_LLONG, &id);
+    w.attr(g, "total_steps", H5T_NATIVE_LLONG, &total);
+    w.attr(g, "seed", H5T_NATIVE_UINT64, &e.seed);
+    w.string_attr(g, "expert_id", e.expert_id);
+    w.attr(g, "context", H5T_NATIVE_DOUBLE, e.context.data(), 1);
+    w.attr(g, "achieved_speed", H5T_NATIVE_DOUBLE, &e.attributes.at("achieved_speed"));
+    H5Gclose(g);
+  }
+  H5Tclose(boolean);
+  return path;
+}
+
+TEST(Demos, FilesInTheLayoutsOfOtherToolsStillLoad) {
+  const std::string path = write_toy_file_in_other_layout("other_layout");
+  EXPECT_EQ(toy_contents_difference(read_demos(path)), "");
+  std::remove(path.c_str());
+}
+
+TEST(Demos, FilesWrittenByH5pyStillLoad) {
+  const std::string path = temp_demo_path("h5py");
+  const std::string script = std::string(VAEGAIL_SOURCE_DIR) + "/src/data/testdata/write_h5py_demos.py";
+  // The system interpreter: python3-h5py is a Debian package, not installed by setup.sh.
+  if (std::system("/usr/bin/python3 -c 'import h5py' 2> /dev/null") != 0) GTEST_SKIP() << "no python3-h5py";
+  ASSERT_EQ(std::system(("/usr/bin/python3 " + script + " " + path).c_str()), 0);
+  EXPECT_EQ(toy_contents_difference(read_demos(path)), "");
   std::remove(path.c_str());
 }
 

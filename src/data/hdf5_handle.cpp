@@ -1,5 +1,7 @@
 #include "data/hdf5_handle.h"
 
+#include <algorithm>
+
 #include "data/demos.h"
 
 namespace vaegail::h5 {
@@ -19,21 +21,48 @@ void Handle::reset() {
   id_ = -1;
 }
 
+hid_t Handle::release() {
+  const hid_t id = id_;
+  id_ = -1;
+  return id;
+}
+
 void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+std::string with_cause(const std::string& what) {
+  std::string cause;
+  // Walking upward starts at the frame where HDF5 first noticed the problem.
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD,
+           [](unsigned n, const H5E_error2_t* err, void* out) -> herr_t {
+             if (n == 0 && err->desc) *static_cast<std::string*>(out) = err->desc;
+             return 0;
+           },
+           &cause);
+  return cause.empty() ? what : what + " (" + cause + ")";
+}
 
 namespace {
 Handle checked(hid_t id, herr_t (*close)(hid_t), const std::string& what) {
-  if (id < 0) throw DataError(what);
+  if (id < 0) throw DataError(with_cause(what));
   return Handle(id, close);
 }
 void check(herr_t status, const std::string& what) {
-  if (status < 0) throw DataError(what);
+  if (status < 0) throw DataError(with_cause(what));
 }
+// Beyond any name list or per-episode value the format stores; a larger size is corruption.
+constexpr hsize_t kMaxAttributeBytes = hsize_t(1) << 24;
 }  // namespace
 
-namespace {
-constexpr hsize_t kCompactBytes = 8 * 1024;  // well under the 64 KiB an object header can hold
-}  // namespace
+Handle create_file(const std::string& path, const std::string& where) {
+  Handle access = checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, where + ": property list");
+  // The 1.10 format checksums all metadata; files need HDF5 1.10 or later (h5py >= 2.7) to read.
+  check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_V110), where + ": file format");
+  // The root group is created with the file: untimed like every other object.
+  Handle creation = checked(H5Pcreate(H5P_FILE_CREATE), H5Pclose, where + ": property list");
+  check(H5Pset_obj_track_times(creation.get(), false), where + ": untimed root group");
+  return checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, creation.get(), access.get()), H5Fclose,
+                 where + ": cannot create file (is the folder there and writable?)");
+}
 
 Handle create_group(hid_t parent, const std::string& name, const std::string& where) {
   Handle plist = checked(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, where + ": property list");
@@ -50,15 +79,14 @@ void write_dataset(hid_t parent, const std::string& name, hid_t mem_type, hid_t 
   check(H5Pset_obj_track_times(plist.get(), false), where + ": untimed dataset");
   hsize_t elements = 1;
   for (hsize_t d : dims) elements *= d;
-  // Small datasets live in the object header: a chunked one costs kilobytes of index and
-  // header whatever its size, which tripled the arm's file (50-step episodes).
-  const bool small = elements * H5Tget_size(file_type) <= kCompactBytes;
-  if (elements > 0 && small) {
-    check(H5Pset_layout(plist.get(), H5D_COMPACT), where + ": compact layout");
-  } else if (elements > 0) {
+  // One chunk per dataset, so that every value sits under a checksum; the 1.10 format indexes
+  // a single chunk from the object header, so small datasets cost no B-tree. Fletcher-32 comes
+  // last: reading checks the stored bytes before inflating them.
+  if (elements > 0) {
     check(H5Pset_chunk(plist.get(), static_cast<int>(dims.size()), dims.data()), where + ": chunking");
     check(H5Pset_shuffle(plist.get()), where + ": shuffle filter");
     check(H5Pset_deflate(plist.get(), 4), where + ": deflate filter");
+    check(H5Pset_fletcher32(plist.get()), where + ": checksum filter");
   }
   Handle ds = checked(H5Dcreate2(parent, name.c_str(), file_type, space.get(), H5P_DEFAULT,
                                  plist.get(), H5P_DEFAULT),
@@ -69,14 +97,17 @@ void write_dataset(hid_t parent, const std::string& name, hid_t mem_type, hid_t 
 }
 
 void write_string_attr(hid_t obj, const std::string& name, const std::string& value) {
+  // Fixed length, padded like numpy's bytes: stored in the (checksummed) object header.
   Handle type = checked(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
-  H5Tset_size(type.get(), H5T_VARIABLE);
-  H5Tset_cset(type.get(), H5T_CSET_UTF8);
+  check(H5Tset_size(type.get(), std::max<size_t>(1, value.size())), "string size");
+  check(H5Tset_strpad(type.get(), H5T_STR_NULLPAD), "string padding");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "string encoding");
   Handle space = checked(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
   Handle attr = checked(H5Acreate2(obj, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
                         H5Aclose, "cannot create attribute " + name);
-  const char* text = value.c_str();
-  check(H5Awrite(attr.get(), type.get(), &text), "cannot write attribute " + name);
+  std::string padded = value;
+  padded.resize(H5Tget_size(type.get()), '\0');
+  check(H5Awrite(attr.get(), type.get(), padded.data()), "cannot write attribute " + name);
 }
 
 void write_double_attr(hid_t obj, const std::string& name, const std::vector<double>& values) {
@@ -102,8 +133,10 @@ Handle bool_type() {
   return type;
 }
 
-bool has_link(hid_t parent, const std::string& name) {
-  return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0;
+void require_link(hid_t parent, const std::string& name, const std::string& where, const std::string& kind) {
+  const htri_t exists = H5Lexists(parent, name.c_str(), H5P_DEFAULT);
+  if (exists < 0) throw DataError(with_cause(where + ": cannot look up " + kind));
+  if (exists == 0) throw DataError(where + ": missing " + kind);
 }
 
 std::vector<hsize_t> dataset_shape(hid_t dataset) {
@@ -114,14 +147,41 @@ std::vector<hsize_t> dataset_shape(hid_t dataset) {
   return dims;
 }
 
-bool has_attr(hid_t obj, const std::string& name) { return H5Aexists(obj, name.c_str()) > 0; }
+hsize_t checked_elements(const std::vector<hsize_t>& dims, size_t element_bytes, const std::string& where) {
+  const hsize_t limit = kMaxDatasetBytes / std::max<size_t>(1, element_bytes);
+  hsize_t n = 1;
+  for (hsize_t d : dims) {
+    if (d > 0 && n > limit / d)
+      throw DataError(where + ": dataset of more than " + std::to_string(kMaxDatasetBytes) +
+                      " bytes (corrupt dimensions?)");
+    n *= d;
+  }
+  return n;
+}
+
+hsize_t link_count(hid_t group) {
+  H5G_info_t info;
+  return H5Gget_info(group, &info) < 0 ? 0 : info.nlinks;
+}
+
+namespace {
+void require_attr(hid_t obj, const std::string& name, const std::string& where) {
+  const htri_t exists = H5Aexists(obj, name.c_str());
+  if (exists < 0) throw DataError(with_cause(where + ": cannot look up attribute '" + name + "'"));
+  if (exists == 0) throw DataError(where + ": missing attribute '" + name + "'");
+}
+}  // namespace
 
 std::string read_string_attr(hid_t obj, const std::string& name, const std::string& where) {
-  if (!has_attr(obj, name)) throw DataError(where + ": missing attribute '" + name + "'");
+  require_attr(obj, name, where);
   Handle attr = checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, where + ": attribute " + name);
   Handle type = checked(H5Aget_type(attr.get()), H5Tclose, where + ": attribute " + name);
   if (H5Tget_class(type.get()) != H5T_STRING)
     throw DataError(where + ": attribute '" + name + "' is not a string");
+  Handle space(H5Aget_space(attr.get()), H5Sclose);
+  if (H5Sget_simple_extent_npoints(space.get()) != 1)
+    throw DataError(where + ": attribute '" + name + "' is not a single string");
+  // Files of other tools (h5py) store variable-length strings; this program writes fixed ones.
   if (H5Tis_variable_str(type.get()) > 0) {
     char* text = nullptr;
     check(H5Aread(attr.get(), type.get(), &text), where + ": cannot read attribute " + name);
@@ -129,13 +189,16 @@ std::string read_string_attr(hid_t obj, const std::string& name, const std::stri
     H5free_memory(text);
     return value;
   }
-  std::string value(H5Tget_size(type.get()), '\0');
+  const size_t size = H5Tget_size(type.get());
+  if (size == 0 || size > kMaxAttributeBytes)
+    throw DataError(where + ": attribute '" + name + "' of " + std::to_string(size) + " bytes (corrupt?)");
+  std::string value(size, '\0');
   check(H5Aread(attr.get(), type.get(), value.data()), where + ": cannot read attribute " + name);
   return value.substr(0, value.find('\0'));
 }
 
 std::vector<double> read_double_attr(hid_t obj, const std::string& name, const std::string& where) {
-  if (!has_attr(obj, name)) throw DataError(where + ": missing attribute '" + name + "'");
+  require_attr(obj, name, where);
   Handle attr = checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, where + ": attribute " + name);
   Handle type = checked(H5Aget_type(attr.get()), H5Tclose, where + ": attribute " + name);
   const H5T_class_t cls = H5Tget_class(type.get());
@@ -143,20 +206,23 @@ std::vector<double> read_double_attr(hid_t obj, const std::string& name, const s
     throw DataError(where + ": attribute '" + name + "' is not numeric");
   Handle space(H5Aget_space(attr.get()), H5Sclose);
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
-  std::vector<double> values(n > 0 ? n : 0);
+  if (n < 0 || hsize_t(n) > kMaxAttributeBytes / sizeof(double))
+    throw DataError(where + ": attribute '" + name + "' of " + std::to_string(n) + " values (corrupt?)");
+  std::vector<double> values(n);
   if (n > 0) check(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, values.data()), where + ": cannot read attribute " + name);
   return values;
 }
 
 std::vector<std::string> attr_names(hid_t obj) {
   std::vector<std::string> names;
-  H5O_info_t info;
-  if (H5Oget_info2(obj, &info, H5O_INFO_NUM_ATTRS) < 0) return names;
-  for (hsize_t i = 0; i < info.num_attrs; ++i) {
-    char buf[256];
-    if (H5Aget_name_by_idx(obj, ".", H5_INDEX_NAME, H5_ITER_INC, i, buf, sizeof buf, H5P_DEFAULT) >= 0)
-      names.emplace_back(buf);
-  }
+  // Iterating visits the attributes there are, whatever count a corrupted header claims.
+  hsize_t position = 0;
+  H5Aiterate2(obj, H5_INDEX_NAME, H5_ITER_INC, &position,
+              [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
+                static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+                return 0;
+              },
+              &names);
   return names;
 }
 

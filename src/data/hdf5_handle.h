@@ -1,6 +1,11 @@
 // Thin RAII and typed helpers over the HDF5 C API, shared by the demonstration reader and
 // writer. Errors throw DataError with a caller-supplied location; HDF5's own error stack
 // printing is switched off so users see one line, not a trace.
+//
+// What the writer stores can check itself: the file format of HDF5 1.10 (checksums on the
+// superblock, object headers, heaps and chunk indices), every non-empty dataset chunked with
+// the Fletcher-32 filter, and strings fixed-length (a variable-length string lives in the
+// global heap, which carries no checksum: a flipped byte there crashed libhdf5).
 #pragma once
 
 #include <hdf5.h>
@@ -22,6 +27,7 @@ class Handle {
   hid_t get() const { return id_; }
   bool valid() const { return id_ >= 0; }
   void reset();
+  hid_t release();  // the caller closes the id from now on
 
  private:
   hid_t id_ = -1;
@@ -29,9 +35,13 @@ class Handle {
 };
 
 void silence_errors();
+// `what` followed by the innermost message on HDF5's error stack, the reason for the call
+// that just failed (e.g. "(data error detected by Fletcher32 checksum)"), when there is one.
+std::string with_cause(const std::string& what);
 
 // Writing. `where` names the object in error messages. Objects carry no creation or
 // modification times, so that the same episodes make the same bytes.
+Handle create_file(const std::string& path, const std::string& where);
 Handle create_group(hid_t parent, const std::string& name, const std::string& where);
 void write_dataset(hid_t parent, const std::string& name, hid_t mem_type, hid_t file_type,
                    const std::vector<hsize_t>& dims, const void* data, const std::string& where);
@@ -41,12 +51,20 @@ void write_scalar_attr(hid_t obj, const std::string& name, hid_t mem_type, hid_t
 // h5py's representation of numpy bool: an enum of int8 with members FALSE and TRUE.
 Handle bool_type();
 
-// Reading.
-bool has_link(hid_t parent, const std::string& name);
+// Reading. Every size a file states is checked before memory is allocated for it: a
+// corrupted dimension must end in an error, not in a multi-terabyte allocation.
+// Throws "`where`: missing `kind`" when `parent` has no link `name`, or HDF5's reason when the
+// lookup itself fails (a corrupted link table must not read as a missing dataset).
+void require_link(hid_t parent, const std::string& name, const std::string& where, const std::string& kind);
 std::vector<hsize_t> dataset_shape(hid_t dataset);
+// The number of elements of `dims`; throws when they overflow or `element_bytes` each would
+// exceed what a demonstration file holds (kMaxDatasetBytes).
+hsize_t checked_elements(const std::vector<hsize_t>& dims, size_t element_bytes, const std::string& where);
+constexpr hsize_t kMaxDatasetBytes = hsize_t(1) << 32;
+// Links directly under a group (episode groups under the root).
+hsize_t link_count(hid_t group);
 std::string read_string_attr(hid_t obj, const std::string& name, const std::string& where);
 std::vector<double> read_double_attr(hid_t obj, const std::string& name, const std::string& where);
-bool has_attr(hid_t obj, const std::string& name);
 std::vector<std::string> attr_names(hid_t obj);
 
 }  // namespace vaegail::h5
