@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "util/atomic_file.h"
+#include "util/checkpoint_file.h"
 
 namespace vaegail {
 
@@ -24,12 +25,24 @@ void check_or_write_config(const std::string& path, const nlohmann::json& config
   write_file_atomically(path, config.dump(2));
 }
 
+namespace {
+int row_number(const std::string& line, int line_number, const std::string& path) {
+  try {
+    return std::stoi(line.substr(0, line.find(',')));
+  } catch (const std::exception&) {
+    throw std::runtime_error(path + ": line " + std::to_string(line_number) + ": the first column is not a number");
+  }
+}
+}  // namespace
+
 void truncate_metrics(const std::string& path, int last) {
   if (!std::filesystem::exists(path)) return;
   std::istringstream in(read_file(path));
   std::string line, kept;
-  for (bool header = true; std::getline(in, line); header = false)
-    if (header || (!line.empty() && std::stoi(line.substr(0, line.find(','))) <= last)) kept += line + "\n";
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (in.eof()) break;  // a line without its newline: torn by a kill mid-write
+    if (number == 1 || (!line.empty() && row_number(line, number, path) <= last)) kept += line + "\n";
+  }
   write_file_atomically(path, kept);
 }
 
@@ -43,17 +56,15 @@ nlohmann::json read_run_config_json(const std::string& run_dir) {
   }
 }
 
-std::string run_checkpoint(const std::string& run_dir) {
-  const std::string path = run_dir + "/checkpoints/latest.pt";
-  if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such checkpoint");
-  return path;
-}
+std::string run_checkpoint(const std::string& run_dir) { return run_dir + "/checkpoints/latest.pt"; }
 
 void load_run_agent(const std::string& run_dir, Agent& agent, torch::Device device) {
-  torch::serialize::InputArchive root, archive;
-  root.load_from(run_checkpoint(run_dir), device);
-  root.read("agent", archive);
-  agent.load(archive);
+  read_checkpoint(run_checkpoint(run_dir), [&](const std::string& path) {
+    torch::serialize::InputArchive root, archive;
+    root.load_from(path, device);
+    root.read("agent", archive);
+    agent.load(archive);
+  });
   agent.eval();
 }
 

@@ -53,6 +53,10 @@ std::string temporary_path_for(const std::string& path) {
 
 std::string first_line(const std::string& message) { return message.substr(0, message.find('\n')); }
 
+bool names_in_one_line(const std::string& message, const std::string& path) {
+  return message.find('\n') == std::string::npos && message.find(path) != std::string::npos;
+}
+
 void move_into_place(const std::string& tmp, const std::string& path, const std::string& keep_previous) {
   try {
     sync_path(tmp, path, "cannot sync to disk");
@@ -74,9 +78,8 @@ void write_atomically(const std::string& path, const std::function<void(const st
     write(tmp);
   } catch (const std::exception& e) {
     std::remove(tmp.c_str());
-    const std::string line = first_line(e.what());
-    if (line == e.what() && line.find(path) != std::string::npos) throw;
-    throw std::runtime_error(path + ": " + line);
+    if (names_in_one_line(e.what(), path)) throw;
+    throw std::runtime_error(path + ": " + first_line(e.what()));
   } catch (...) {
     std::remove(tmp.c_str());
     throw;

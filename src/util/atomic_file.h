@@ -36,5 +36,7 @@ std::string read_file(const std::string& path);
 
 // The first line of an exception's message: the message without LibTorch's stack trace.
 std::string first_line(const std::string& message);
+// Whether `message` is already one line naming `path` (then it is passed on as it is).
+bool names_in_one_line(const std::string& message, const std::string& path);
 
 }  // namespace vaegail

@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
+
+#include "util/test_child.h"
 
 namespace vaegail {
 namespace {
@@ -44,6 +48,78 @@ TEST(AtomicFile, ReadingAMissingFileNamesIt) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/vaegail.txt"), std::string::npos);
   }
+}
+
+TEST(AtomicFile, KeepPreviousKeepsTheFileItReplaces) {
+  const std::string path = scratch("rotated.txt"), previous = scratch("rotated.previous.txt");
+  std::remove(previous.c_str());
+  write_file_atomically(path, "one", previous);
+  EXPECT_FALSE(std::filesystem::exists(previous));  // nothing to keep the first time
+  write_file_atomically(path, "two", previous);
+  EXPECT_EQ(read_file(path), "two");
+  EXPECT_EQ(read_file(previous), "one");
+  std::remove(path.c_str());
+  std::remove(previous.c_str());
+}
+
+TEST(AtomicFile, AMultiLineErrorComesBackAsOneLineNamingTheFile) {
+  const std::string path = scratch("trace.bin");
+  try {
+    write_atomically(path, [](const std::string&) {
+      throw std::runtime_error("PytorchStreamWriter failed writing file data/0\nframe #0: c10::Error");
+    });
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": PytorchStreamWriter failed writing file data/0");
+  }
+}
+
+void expect_one_line_naming(const std::string& message, const std::string& path, const std::string& cause) {
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+  EXPECT_NE(message.find(cause), std::string::npos) << message << " lacks " << cause;
+}
+
+TEST(AtomicFile, AFullDiskEndsInOneLineNamingTheFileAndKeepsTheOldOne) {
+  const std::string path = scratch("full.txt");
+  write_file_atomically(path, "old");
+  // The temporary name leads to /dev/full, where every write fails with ENOSPC.
+  std::filesystem::create_symlink("/dev/full", temporary_path_for(path));
+  try {
+    write_file_atomically(path, "new");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    expect_one_line_naming(e.what(), path, std::strerror(ENOSPC));
+  }
+  EXPECT_EQ(read_file(path), "old");
+  EXPECT_FALSE(leaves_temporary(path));
+  std::remove(path.c_str());
+}
+
+TEST(AtomicFile, AWritePastTheFileSizeLimitKeepsBothOldFiles) {
+  const std::string path = scratch("limit.txt"), previous = scratch("limit.previous.txt");
+  write_file_atomically(path, "first");
+  write_file_atomically(path, "second", previous);
+  const ChildOutcome outcome = run_in_child(
+      [&](std::string& report) {
+        limit_file_size(1024);
+        try {
+          write_file_atomically(path, std::string(4096, 'x'), previous);
+        } catch (const std::exception& e) {
+          report = e.what();
+          return 0;
+        }
+        return 1;
+      },
+      10);
+  ASSERT_EQ(outcome.end, ChildOutcome::End::kExited);
+  ASSERT_EQ(outcome.code, 0) << "the write did not fail";
+  expect_one_line_naming(outcome.report, path, std::strerror(EFBIG));
+  EXPECT_EQ(read_file(path), "second");
+  EXPECT_EQ(read_file(previous), "first");
+  EXPECT_FALSE(leaves_temporary(path));
+  std::remove(path.c_str());
+  std::remove(previous.c_str());
 }
 
 }  // namespace

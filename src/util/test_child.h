@@ -4,9 +4,11 @@
 #pragma once
 
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <functional>
 #include <string>
 
@@ -51,6 +53,24 @@ inline ChildOutcome run_in_child(const std::function<int(std::string& report)>& 
     outcome.code = WTERMSIG(status);
   }
   return outcome;
+}
+
+// For a child: every write that would make a file longer than `bytes` fails with EFBIG, as on
+// a full disk (SIGXFSZ, which would kill the process instead, is ignored).
+inline void limit_file_size(rlim_t bytes) {
+  const rlimit limit{bytes, bytes};
+  setrlimit(RLIMIT_FSIZE, &limit);
+  signal(SIGXFSZ, SIG_IGN);
+}
+
+// Whether any process left a temporary file for `path` (util/atomic_file.h's "PATH.tmp-PID"):
+// a forked writer's temporary name carries the child's pid, not the test's.
+inline bool leaves_temporary(const std::string& path) {
+  const std::filesystem::path target(path);
+  const std::string prefix = target.filename().string() + ".tmp-";
+  for (const auto& entry : std::filesystem::directory_iterator(target.parent_path()))
+    if (entry.path().filename().string().rfind(prefix, 0) == 0) return true;
+  return false;
 }
 
 }  // namespace vaegail

@@ -1,0 +1,122 @@
+#include "gail/run_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+#include "gail/test_support.h"  // one Torch thread: the tests fork
+#include "util/atomic_file.h"
+#include "util/checkpoint_file.h"
+#include "util/test_child.h"
+
+namespace vaegail {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string run_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("vaegail_run_dir_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir / "checkpoints");
+  return dir.string();
+}
+
+std::shared_ptr<Agent> agent_with_weights(float value) {
+  AgentOptions o;
+  o.obs_dim = 3;
+  o.act_dim = 2;
+  o.policy_hidden = o.critic_hidden = {16};
+  auto agent = Agent::make_gaussian(o);
+  torch::NoGradGuard no_grad;
+  for (auto& p : agent->parameters()) p.fill_(value);
+  return agent;
+}
+
+// The layout the trainers write: the agent under "agent".
+void checkpoint_agent(const std::string& dir, float value) {
+  rotate_and_write(run_checkpoint(dir), [&](std::ostream& out) {
+    torch::serialize::OutputArchive root, archive;
+    agent_with_weights(value)->save(archive);
+    root.write("agent", archive);
+    root.save_to(out);
+  });
+}
+
+float first_weight_of_run(const std::string& dir) {
+  auto agent = agent_with_weights(0);
+  load_run_agent(dir, *agent, torch::kCPU);
+  return agent->parameters().front().flatten()[0].item<float>();
+}
+
+TEST(RunDir, ACheckpointOnAFailingDiskEndsInOneLineAndKeepsBothCheckpoints) {
+  const std::string dir = run_dir("failing"), latest = run_checkpoint(dir);
+  checkpoint_agent(dir, 1);
+  checkpoint_agent(dir, 2);
+  const auto size = fs::file_size(latest);
+  // LibTorch's save_to(file) aborts the process here (exit 134); the serialised archive does not.
+  const ChildOutcome outcome = run_in_child(
+      [&](std::string& report) {
+        limit_file_size(size / 2);
+        try {
+          checkpoint_agent(dir, 3);
+        } catch (const std::exception& e) {
+          report = e.what();
+        }
+        return 0;
+      },
+      60);
+  ASSERT_EQ(outcome.end, ChildOutcome::End::kExited) << "signal " << outcome.code;
+  EXPECT_EQ(outcome.report, latest + ": write failed: " + std::strerror(EFBIG));
+  EXPECT_FALSE(leaves_temporary(latest));
+  EXPECT_EQ(first_weight_of_run(dir), 2.f);
+  fs::rename(previous_checkpoint_for(latest), latest);
+  EXPECT_EQ(first_weight_of_run(dir), 1.f);
+}
+
+TEST(RunDir, ATruncatedCheckpointIsOneLineNamingIt) {
+  const std::string dir = run_dir("truncated"), latest = run_checkpoint(dir);
+  checkpoint_agent(dir, 1);
+  fs::resize_file(latest, fs::file_size(latest) / 2);
+  try {
+    first_weight_of_run(dir);
+    FAIL() << "a truncated checkpoint loaded";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), latest + ": unreadable checkpoint (PytorchStreamReader failed reading zip "
+                                              "archive: failed finding central directory)");
+  }
+}
+
+TEST(RunDir, ResumingFromATruncatedLatestTakesThePrevious) {
+  const std::string dir = run_dir("resume"), latest = run_checkpoint(dir);
+  checkpoint_agent(dir, 1);
+  checkpoint_agent(dir, 2);
+  fs::resize_file(latest, fs::file_size(latest) / 2);
+  auto agent = agent_with_weights(0);
+  const ResumedCheckpoint resumed = resume_checkpoint(latest, [&](const std::string& path) {
+    torch::serialize::InputArchive root, archive;
+    root.load_from(path);
+    root.read("agent", archive);
+    agent->load(archive);
+  });
+  EXPECT_EQ(resumed.path, previous_checkpoint_for(latest));
+  EXPECT_EQ(agent->parameters().front().flatten()[0].item<float>(), 1.f);
+}
+
+TEST(RunDir, TruncatingMetricsDropsRowsPastTheCheckpointAndATornLastRow) {
+  const std::string path = run_dir("metrics") + "/metrics.csv";
+  write_file_atomically(path, "iteration,loss\n1,0.5\n2,0.4\n3,0.3\n4,0.");
+  truncate_metrics(path, 2);
+  EXPECT_EQ(read_file(path), "iteration,loss\n1,0.5\n2,0.4\n");
+  write_file_atomically(path, "iteration,loss\n1,0.5\nx,0.4\n");
+  try {
+    truncate_metrics(path, 2);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": line 3: the first column is not a number");
+  }
+}
+
+}  // namespace
+}  // namespace vaegail
