@@ -83,8 +83,28 @@ TEST(RunDir, ATruncatedCheckpointIsOneLineNamingIt) {
     first_weight_of_run(dir);
     FAIL() << "a truncated checkpoint loaded";
   } catch (const std::runtime_error& e) {
-    EXPECT_EQ(std::string(e.what()), latest + ": unreadable checkpoint (PytorchStreamReader failed reading zip "
-                                              "archive: failed finding central directory)");
+    EXPECT_EQ(std::string(e.what()), latest + ": damaged checkpoint (truncated: no zip directory at the end)");
+  }
+}
+
+TEST(RunDir, AFlippedByteAmongTheWeightsIsCaughtBeforeLibTorchLoadsIt) {
+  const std::string dir = run_dir("flipped"), latest = run_checkpoint(dir);
+  checkpoint_agent(dir, 1.5f);
+  std::string bytes = read_file(latest);
+  const float weight = 1.5f;
+  const std::string run_of_weights = std::string(reinterpret_cast<const char*>(&weight), 4) + std::string(
+                                         reinterpret_cast<const char*>(&weight), 4);
+  const size_t at = bytes.find(run_of_weights);
+  ASSERT_NE(at, std::string::npos);
+  bytes[at + 2] ^= 0x01;  // 1.5 becomes another float: LibTorch alone would load it
+  write_file_atomically(latest, bytes);
+  try {
+    first_weight_of_run(dir);
+    FAIL() << "a checkpoint with a changed weight loaded";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(latest + ": damaged checkpoint (entry ", 0), 0u) << message;
+    EXPECT_NE(message.find("fails its CRC-32)"), std::string::npos) << message;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "util/atomic_file.h"
+#include "util/zip_check.h"
 
 namespace vaegail {
 
@@ -41,6 +42,11 @@ void rotate_and_write(const std::string& latest, const SaveToStream& save) {
 
 void read_checkpoint(const std::string& path, const LoadFromFile& load) {
   if (!fs::exists(path)) throw std::runtime_error(path + ": no such checkpoint");
+  const std::string bytes = read_file(path);
+  if (looks_like_zip(bytes)) {
+    const std::string damage = zip_damage(bytes);
+    if (!damage.empty()) throw std::runtime_error(path + ": damaged checkpoint (" + damage + ")");
+  }
   try {
     load(path);
   } catch (const std::logic_error&) {

@@ -27,10 +27,12 @@ void write_checkpoint(const std::string& path, const SaveToStream& save);
 // The same, keeping the file it replaces as previous_checkpoint_for(latest).
 void rotate_and_write(const std::string& latest, const SaveToStream& save);
 
-// Calls load(path). A missing file throws "PATH: no such checkpoint", a failed load (a
-// truncated or corrupt file: LibTorch's c10::Error and its stack trace) "PATH: unreadable
-// checkpoint (FIRST LINE)". A std::logic_error passes through as thrown: it means a whole
-// checkpoint of another run (another config or seed), which falling back would not mend.
+// Calls load(path). A missing file throws "PATH: no such checkpoint"; a zip archive (what
+// LibTorch writes) with an entry that fails its CRC-32 or a directory cut short "PATH: damaged
+// checkpoint (WHAT)" (util/zip_check.h), before LibTorch reads it; a failed load (LibTorch's
+// c10::Error and its stack trace) "PATH: unreadable checkpoint (FIRST LINE)". A
+// std::logic_error passes through as thrown: it means a whole checkpoint of another run
+// (another config or seed), which falling back would not mend.
 void read_checkpoint(const std::string& path, const LoadFromFile& load);
 
 struct ResumedCheckpoint {

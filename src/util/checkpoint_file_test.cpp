@@ -84,10 +84,13 @@ TEST(CheckpointFile, AFailingDiskLeavesBothCheckpointsAndNoTemporaryFile) {
 
 TEST(CheckpointFile, AnUnreadableCheckpointIsOneLineNamingIt) {
   const std::string latest = checkpoint_dir("unreadable") + "/latest.pt";
-  write_file_atomically(latest, "PK\x03\x04 cut short");
+  write_file_atomically(latest, "not a checkpoint");
   FakeLoader loader;
   EXPECT_EQ(error_of([&] { read_checkpoint(latest, loader.load()); }),
             latest + ": unreadable checkpoint (PytorchStreamReader failed reading zip archive)");
+  write_file_atomically(latest, "PK\x03\x04 a zip archive cut short");
+  EXPECT_EQ(error_of([&] { read_checkpoint(latest, loader.load()); }),
+            latest + ": damaged checkpoint (truncated: no zip directory at the end)");
   const std::string missing = latest + ".missing";
   EXPECT_EQ(error_of([&] { read_checkpoint(missing, loader.load()); }), missing + ": no such checkpoint");
 }
