@@ -54,6 +54,28 @@ HumanoidEnv::HumanoidEnv(std::shared_ptr<const MujocoModel> model, HumanoidOptio
   feature_names_.insert(feature_names_.end(), effector_names.begin(), effector_names.end());
   context_names_ = {"style"};
   context_ = {0.0};
+  read_styles();
+}
+
+void HumanoidEnv::read_styles() {
+  const mjModel* m = model();
+  const std::string prefix = "style_";
+  for (int n = 0; n < m->nnumeric; ++n) {
+    const std::string name = mj_id2name(m, mjOBJ_NUMERIC, n);
+    if (name.rfind(prefix, 0) != 0) continue;
+    if (m->numeric_size[n] != kStyleTerms)
+      throw std::runtime_error(model_->source() + ": " + name + " needs " + std::to_string(kStyleTerms) + " values");
+    StyleTerms values;
+    std::copy_n(m->numeric_data + m->numeric_adr[n], kStyleTerms, values.begin());
+    if (name == "style_scales") {
+      style_scales_ = values;
+      continue;
+    }
+    style_names_.push_back(name.substr(prefix.size()));
+    style_targets_.push_back(values);
+  }
+  if (style_targets_.empty() || std::any_of(style_scales_.begin(), style_scales_.end(), [](double s) { return !(s > 0); }))
+    throw std::runtime_error(model_->source() + ": the humanoid needs style_scales (all > 0) and at least one style");
 }
 
 std::array<double, 3> HumanoidEnv::to_root_frame(const double* world) const {
@@ -130,23 +152,65 @@ void HumanoidEnv::features(double* out) const {
     for (double x : end_effector(static_cast<int>(e))) *out++ = x;
 }
 
-double HumanoidEnv::task_reward(double forward_speed, double target_speed, double root_height, double up_z,
-                                const float* action, int act_dim) {
-  const double stand = std::clamp((root_height - kFallRootHeight) / 0.35, 0.0, 1.0);
+double HumanoidEnv::yaw_rate() const {
+  // The free joint's angular velocity is in the root frame; its world z is the xmat's third row.
+  const double* r = data()->xmat + 9 * root_;
+  const double* w = data()->qvel + 3;
+  return r[6] * w[0] + r[7] * w[1] + r[8] * w[2];
+}
+
+double HumanoidEnv::lateral_speed() const {
+  double v[3];
+  subtree_velocity(root_, v);
+  const double h = heading();
+  return -v[0] * std::sin(h) + v[1] * std::cos(h);
+}
+
+StyleTerms HumanoidEnv::style_measures() const {
+  const auto lhand = end_effector(0), rhand = end_effector(1), lfoot = end_effector(2), rfoot = end_effector(3);
+  StyleTerms m{};
+  m[kForwardSpeed] = forward_speed();
+  m[kSwaySpeed] = std::abs(lateral_speed());
+  m[kTurnRate] = std::abs(yaw_rate());
+  m[kRootHeight] = root_height();
+  m[kHeadForward] = end_effector(4)[0];
+  m[kHandHeight] = 0.5 * (lhand[2] + rhand[2]);
+  m[kHandSpread] = 0.5 * (std::abs(lhand[1]) + std::abs(rhand[1]));
+  m[kFootSpread] = 0.5 * (std::abs(lfoot[1]) + std::abs(rfoot[1]));
+  return m;
+}
+
+double HumanoidEnv::style_reward(const StyleTerms& target, const StyleTerms& scale, const StyleTerms& measured,
+                                 double up_z, const float* action, int act_dim) {
+  auto credit = [&](int k) {
+    const double miss = (measured[k] - target[k]) / scale[k];
+    return 1.0 / (1.0 + miss * miss);
+  };
+  double posture = 0.0;
+  for (int k = kForwardSpeed + 1; k < kStyleTerms; ++k) posture += credit(k) / (kStyleTerms - 1);
   const double upright = 0.5 * (1.0 + up_z);
-  const double miss = (forward_speed - target_speed) / 0.5;
-  const double move = 1.0 / (1.0 + miss * miss);
   double effort = 0.0;
   for (int a = 0; a < act_dim; ++a) {
     const double u = std::clamp(static_cast<double>(action[a]), -1.0, 1.0);
     effort += u * u;
   }
-  return stand * upright * (kAliveWeight + (1.0 - kAliveWeight) * move) - 0.05 * effort / act_dim;
+  const double style = credit(kForwardSpeed) * (kPostureFloor + (1.0 - kPostureFloor) * posture);
+  return upright * (kAliveWeight + (1.0 - kAliveWeight) * style) - 0.05 * effort / act_dim;
+}
+
+void HumanoidEnv::set_context(const std::vector<double>& context) {
+  if (context.size() == 1) {
+    const double style = context[0];
+    if (!(style >= 0 && style < static_cast<double>(style_names_.size())) || style != std::floor(style))
+      throw std::invalid_argument("humanoid: style " + std::to_string(style) + " is not an index of its " +
+                                  std::to_string(style_names_.size()) + " styles");
+  }
+  MujocoEnv::set_context(context);
 }
 
 double HumanoidEnv::reward(const float* action) const {
-  return task_reward(forward_speed(), humanoid_options_.target_speed, root_height(), up_in_root()[2], action,
-                     kHinges);
+  return style_reward(style_targets_[static_cast<int>(context_[0])], style_scales_, style_measures(),
+                      up_in_root()[2], action, kHinges);
 }
 
 bool HumanoidEnv::has_terminated() const { return humanoid_options_.terminate_on_fall && fallen(); }

@@ -1,8 +1,8 @@
 // The 62-DoF CMU humanoid task (models/humanoid_cmu.xml; the paper's section 4.3): a free root
 // and 56 hinges, 56 torque motors, control step 0.03 s, 334-step episodes (10 s), every episode
 // from the standing rest pose with each hinge's angle and velocity perturbed by up to +- 0.02
-// (rad, rad/s; seeded). Context: the movement style, an index (0, 1, ...) for style-conditioned
-// experts; nothing reads it yet (the styles and their rewards come with the controllers).
+// (rad, rad/s; seeded). Context: the movement style, an index into the styles of the model
+// (style_names(); set_context throws on an index outside them), which picks the reward.
 //
 // Observation layout (137 floats):
 //   0..55     joint angles      the 56 hinges in model order, lfemurrz ... rthumbrx (rad)
@@ -23,26 +23,38 @@
 // fallen is 1 when the head is below 0.9 m, the root below 0.55 m, or a geom other than the
 // feet and toes touches the floor (contacts as found at the last physics step).
 //
-// Reward for the expert stage, a neutral placeholder until the styles bring their own:
-//   stand * upright * (0.2 + 0.8 * move) - 0.05 * mean(clip(a)^2)
-//   stand   = clip((root_height - 0.55) / 0.35, 0, 1)        full credit from 0.9 m
+// Reward: each style is a target for eight measures of the current state (style_measures(),
+// StyleTerm order), read from the model's <custom> numerics style_NAME, with per-measure
+// tolerances s from style_scales (models/humanoid_cmu.xml lists them; docs/humanoid_controllers.md
+// says what each style is meant to look like):
+//   upright * (0.2 + 0.8 * speed * (0.4 + 0.6 * posture)) - 0.05 * mean(clip(a)^2)
+//   credit(x, target, s) = 1 / (1 + ((x - target) / s)^2)    1 on target, 1/2 at a miss of s
+//   speed   = credit of forward_speed
+//   posture = mean credit of the seven others
 //   upright = (1 + up_z) / 2
-//   move    = 1 / (1 + ((forward_speed - target_speed) / 0.5)^2)
-// move is sharp at the target yet its tails still pull from a standstill (0.15 at rest for the
-// default 1.2 m/s); being up pays on its own, as the walker's does, so that falling early never
-// beats trying.
+// Speed multiplies posture so that a body standing in the style's posture earns little more
+// than the 0.2 for being up (0.2 + 0.8 * 0.148 for the 1.2 m/s walk): only moving pays. The
+// 0.4 floor keeps posture's gradient alive while the speed is still far off. Sway and turn
+// are magnitudes, so a policy may sway or turn either way (the styles need no clock). Being up
+// pays on its own, as the walker's does, so that falling early never beats trying.
 #pragma once
 
 #include <array>
+#include <string>
+#include <vector>
 
 #include "env/mujoco_env.h"
 
 namespace vaegail {
 
+// The measures a style's reward scores, in the order of the model's style numerics.
+enum StyleTerm { kForwardSpeed, kSwaySpeed, kTurnRate, kRootHeight, kHeadForward, kHandHeight, kHandSpread,
+                 kFootSpread, kStyleTerms };
+using StyleTerms = std::array<double, kStyleTerms>;
+
 struct HumanoidOptions {
   bool terminate_on_fall = true;
   int episode_length = 334;
-  double target_speed = 1.2;  // m/s, an adult's usual walking speed
 };
 
 class HumanoidEnv : public MujocoEnv {
@@ -51,6 +63,7 @@ class HumanoidEnv : public MujocoEnv {
   static constexpr double kFallHeadHeight = 0.9;
   static constexpr double kFallRootHeight = 0.55;
   static constexpr double kAliveWeight = 0.2;
+  static constexpr double kPostureFloor = 0.4;
   // The bodies whose positions the observation and the features carry, in their order.
   static constexpr std::array<const char*, 5> kEndEffectors = {"lhand", "rhand", "lfoot", "rfoot", "head"};
 
@@ -71,15 +84,26 @@ class HumanoidEnv : public MujocoEnv {
   bool fallen() const;
   // Whether a geom other than the feet and toes touches the floor.
   bool off_feet_contact() const;
-  // The reward for a given state and action, for tests and documentation.
-  static double task_reward(double forward_speed, double target_speed, double root_height, double up_z,
-                            const float* action, int act_dim);
+  // The yaw rate of the root (rad/s, about world z).
+  double yaw_rate() const;
+  // The centre of mass's speed across the heading (m/s, positive towards the body's left).
+  double lateral_speed() const;
+  StyleTerms style_measures() const;
+  const std::vector<std::string>& style_names() const { return style_names_; }
+  const StyleTerms& style_target(int style) const { return style_targets_.at(style); }
+  const StyleTerms& style_scales() const { return style_scales_; }
+  void set_context(const std::vector<double>& context) override;
+  // The reward of a style's targets for measured terms, the pelvis's up_z and an action.
+  static double style_reward(const StyleTerms& target, const StyleTerms& scale, const StyleTerms& measured,
+                             double up_z, const float* action, int act_dim);
 
  protected:
   double reward(const float* action) const override;
   bool has_terminated() const override;
 
  private:
+  // The styles and tolerances of the model's <custom> numerics (throws if they are malformed).
+  void read_styles();
   // Express a world-frame vector in the root frame.
   std::array<double, 3> to_root_frame(const double* world) const;
 
@@ -87,6 +111,9 @@ class HumanoidEnv : public MujocoEnv {
   int root_ = 0, head_ = 0, floor_ = 0;
   std::array<int, kEndEffectors.size()> end_effectors_{};
   std::array<int, 4> feet_{};  // lfoot, ltoes, rfoot, rtoes: the bodies that may touch the floor
+  std::vector<std::string> style_names_;
+  std::vector<StyleTerms> style_targets_;
+  StyleTerms style_scales_{};
 };
 
 }  // namespace vaegail

@@ -126,6 +126,13 @@ TEST(Humanoid, StandsInItsRestPoseOnItsFeetAboutOnePointSevenMetresTall) {
   EXPECT_GT(d->ncon, 0);
   EXPECT_FALSE(env.off_feet_contact());
   EXPECT_FALSE(env.fallen());
+  // The rest values the model's style comment quotes, up to the reset's +- 0.02 rad per hinge.
+  const StyleTerms rest = env.style_measures();
+  EXPECT_NEAR(rest[kRootHeight], 0.951, 0.03);
+  EXPECT_NEAR(rest[kHeadForward], 0.0, 0.03);
+  EXPECT_NEAR(rest[kHandHeight], -0.134, 0.03);
+  EXPECT_NEAR(rest[kHandSpread], 0.19, 0.03);
+  EXPECT_NEAR(rest[kFootSpread], 0.09, 0.03);
 }
 
 TEST(Humanoid, StaysUpUnderAPdHoldAndFallsWithoutTorque) {
@@ -280,20 +287,108 @@ TEST(Humanoid, ObservationAndFeaturesMatchTheSimulatorStateByHand) {
   }
   EXPECT_NEAR(f[0], (momentum[0] * std::cos(heading) + momentum[1] * std::sin(heading)) / mass, 1e-9);
   EXPECT_NEAR(f[2], d->xpos[3 * root + 2], 1e-12);
+
+  // The style measures: the same centre of mass across the heading, the root's world-frame yaw
+  // rate, and the end-effector features averaged over the two sides.
+  const double lateral = (-momentum[0] * std::sin(heading) + momentum[1] * std::cos(heading)) / mass;
+  double world_velocity[6];
+  mj_objectVelocity(m, d, mjOBJ_XBODY, root, world_velocity, 0);
+  EXPECT_GT(std::abs(world_velocity[2]), 0.01);
+  const StyleTerms s = env.style_measures();
+  EXPECT_NEAR(env.lateral_speed(), lateral, 1e-9);
+  EXPECT_NEAR(env.yaw_rate(), world_velocity[2], 1e-9);
+  EXPECT_NEAR(s[kForwardSpeed], f[0], 1e-12);
+  EXPECT_NEAR(s[kSwaySpeed], std::abs(lateral), 1e-9);
+  EXPECT_NEAR(s[kTurnRate], std::abs(world_velocity[2]), 1e-9);
+  EXPECT_NEAR(s[kRootHeight], f[2], 1e-12);
+  EXPECT_NEAR(s[kHeadForward], f[16], 1e-12);                                  // head_x
+  EXPECT_NEAR(s[kHandHeight], (f[6] + f[9]) / 2, 1e-12);                        // lhand_z, rhand_z
+  EXPECT_NEAR(s[kHandSpread], (std::abs(f[5]) + std::abs(f[8])) / 2, 1e-12);    // lhand_y, rhand_y
+  EXPECT_NEAR(s[kFootSpread], (std::abs(f[11]) + std::abs(f[14])) / 2, 1e-12);  // lfoot_y, rfoot_y
 }
 
-TEST(Humanoid, RewardMatchesHandComputedValues) {
+TEST(Humanoid, StyleRewardMatchesHandComputedValues) {
   const std::vector<float> zero(56, 0.f), full(56, 3.f);  // clipped to 1
-  EXPECT_DOUBLE_EQ(HumanoidEnv::task_reward(1.2, 1.2, 0.95, 1.0, zero.data(), 56), 1.0);
-  // Standing still with the 1.2 m/s target: the alive weight and 1 / (1 + 2.4^2) of the rest.
-  EXPECT_NEAR(HumanoidEnv::task_reward(0.0, 1.2, 0.95, 1.0, zero.data(), 56), 0.2 + 0.8 / (1 + 5.76), 1e-12);
-  // Half height credit at 0.725 m, half uprightness lying on the side, the full control cost.
-  EXPECT_NEAR(HumanoidEnv::task_reward(1.2, 1.2, 0.725, 1.0, zero.data(), 56), 0.5, 1e-12);
-  EXPECT_NEAR(HumanoidEnv::task_reward(1.2, 1.2, 0.95, 0.0, zero.data(), 56), 0.5, 1e-12);
-  EXPECT_NEAR(HumanoidEnv::task_reward(1.2, 1.2, 0.95, 1.0, full.data(), 56), 0.95, 1e-12);
-  EXPECT_NEAR(HumanoidEnv::task_reward(1.2, 1.2, 0.5, 1.0, zero.data(), 56), 0.0, 1e-12);
-  EXPECT_GT(HumanoidEnv::task_reward(1.0, 1.2, 0.95, 1, zero.data(), 56),
-            HumanoidEnv::task_reward(0.5, 1.2, 0.95, 1, zero.data(), 56));
+  HumanoidEnv env;
+  const StyleTerms& walk = env.style_target(0);
+  const StyleTerms& scale = env.style_scales();
+  // On every target, upright, no effort: full credit.
+  EXPECT_DOUBLE_EQ(HumanoidEnv::style_reward(walk, scale, walk, 1.0, zero.data(), 56), 1.0);
+  // Standing still in the walk's posture: the alive weight and 1 / (1 + (1.2 / 0.5)^2) of the rest.
+  StyleTerms still = walk;
+  still[kForwardSpeed] = 0.0;
+  EXPECT_NEAR(HumanoidEnv::style_reward(walk, scale, still, 1.0, zero.data(), 56), 0.2 + 0.8 / (1 + 5.76), 1e-12);
+  // Moving at the target with one posture measure off by its tolerance: that term's credit halves,
+  // posture = (6 + 1/2) / 7, scaled above the 0.4 floor.
+  for (int k = kSwaySpeed; k < kStyleTerms; ++k) {
+    StyleTerms off = walk;
+    off[k] += scale[k];
+    EXPECT_NEAR(HumanoidEnv::style_reward(walk, scale, off, 1.0, zero.data(), 56),
+                0.2 + 0.8 * (0.4 + 0.6 * 6.5 / 7), 1e-12) << k;
+  }
+  // Every posture measure far off: the floor alone, 0.2 + 0.8 * 0.4 in the limit.
+  StyleTerms wrong = walk;
+  for (int k = kSwaySpeed; k < kStyleTerms; ++k) wrong[k] += 1e6 * scale[k];
+  EXPECT_NEAR(HumanoidEnv::style_reward(walk, scale, wrong, 1.0, zero.data(), 56), 0.52, 1e-9);
+  // Half uprightness lying on the side, and the full control cost.
+  EXPECT_NEAR(HumanoidEnv::style_reward(walk, scale, walk, 0.0, zero.data(), 56), 0.5, 1e-12);
+  EXPECT_NEAR(HumanoidEnv::style_reward(walk, scale, walk, 1.0, full.data(), 56), 0.95, 1e-12);
+}
+
+// The gait signatures the docs give each style, as relations between their targets.
+TEST(Humanoid, StylesHaveTheirDocumentedSignatures) {
+  HumanoidEnv env;
+  const std::vector<std::string> names = {"walk", "old", "fast", "drunk", "chicken", "crouch", "swagger", "strong"};
+  ASSERT_EQ(env.style_names(), names);
+  auto t = [&](const char* style, StyleTerm k) {
+    const int i = static_cast<int>(std::find(names.begin(), names.end(), style) - names.begin());
+    return env.style_target(i)[k];
+  };
+  EXPECT_DOUBLE_EQ(t("walk", kForwardSpeed), 1.2);
+  for (const char* slow : {"old", "drunk", "chicken", "crouch"}) EXPECT_LT(t(slow, kForwardSpeed), 1.0) << slow;
+  EXPECT_GT(t("fast", kForwardSpeed), 1.5);
+  EXPECT_LT(t("old", kRootHeight), t("walk", kRootHeight));
+  EXPECT_GT(t("old", kHeadForward), 0.1);                    // hunched
+  EXPECT_LT(t("crouch", kRootHeight), t("old", kRootHeight));  // the lowest
+  EXPECT_GT(t("drunk", kSwaySpeed), 0.2);
+  EXPECT_GT(t("drunk", kTurnRate), 0.3);                     // a wandering heading
+  EXPECT_GT(t("drunk", kFootSpread), t("walk", kFootSpread));
+  for (const auto& other : names)
+    if (other != "chicken")
+      EXPECT_GT(t("chicken", kHandHeight), t(other.c_str(), kHandHeight)) << other;  // elbows up and out
+  EXPECT_GT(t("swagger", kSwaySpeed), 0.1);                  // hip sway
+  EXPECT_LT(t("swagger", kFootSpread), t("walk", kFootSpread));  // steps on one line
+  for (const auto& other : names)
+    if (other != "strong") {
+      EXPECT_GT(t("strong", kHandSpread), t(other.c_str(), kHandSpread)) << other;  // arms away from the body
+      EXPECT_GE(t("strong", kFootSpread), t(other.c_str(), kFootSpread)) << other;  // wide stance
+    }
+  // Each style's reward peaks on its own targets and pays less for any other style's.
+  const std::vector<float> zero(56, 0.f);
+  for (std::size_t a = 0; a < names.size(); ++a)
+    for (std::size_t b = 0; b < names.size(); ++b)
+      if (a != b)
+        EXPECT_LT(HumanoidEnv::style_reward(env.style_target(a), env.style_scales(), env.style_target(b), 1.0,
+                                            zero.data(), 56), 0.95) << names[a] << " on " << names[b];
+}
+
+TEST(Humanoid, TheStyleContextPicksTheReward) {
+  HumanoidEnv env;
+  const std::vector<float> zero(56, 0.f);
+  std::vector<double> rewards;
+  for (int style : {0, 2}) {
+    env.set_context({static_cast<double>(style)});
+    env.reset(7);
+    const StepOutcome out = env.step(zero.data());
+    EXPECT_DOUBLE_EQ(out.reward, HumanoidEnv::style_reward(env.style_target(style), env.style_scales(),
+                                                           env.style_measures(), env.up_in_root()[2], zero.data(), 56));
+    rewards.push_back(out.reward);
+  }
+  // At rest the 1.2 m/s walk pays more than the 2 m/s fast style.
+  EXPECT_GT(rewards[0], rewards[1]);
+  EXPECT_THROW(env.set_context({8.0}), std::invalid_argument);
+  EXPECT_THROW(env.set_context({-1.0}), std::invalid_argument);
+  EXPECT_THROW(env.set_context({1.5}), std::invalid_argument);
 }
 
 TEST(Humanoid, IsABuiltInTaskWithAStyleContext) {
