@@ -36,10 +36,6 @@ struct TrainFlags {
   std::uint64_t seed = 0;      // arm: the targets' stream
 };
 
-void require_known_task(const std::string& task) {
-  if (task != "walker" && task != "arm")
-    throw std::invalid_argument("experts: --task is walker or arm, not '" + task + "'");
-}
 
 template <class Spec>
 std::vector<Spec> selected(const std::vector<Spec>& all, const std::vector<std::string>& only) {
@@ -88,17 +84,30 @@ void train_in_parallel(const std::vector<std::string>& ids, std::vector<std::int
   progress.finish();
 }
 
-void run_train_walker(const TrainFlags& f) {
-  ExpertGrid grid = f.grid == "small" ? small_walker_grid() : paper_walker_grid();
-  ExpertTrainOptions options;
-  if (!f.config.empty()) {
-    const auto j = read_json_file(f.config);
-    if (j.contains("grid")) grid = j["grid"].get<ExpertGrid>();
-    if (j.contains("training")) options = j["training"].get<ExpertTrainOptions>();
+// The config's "grid", or its "grids" one after another (the humanoid's training and evaluation
+// controllers, seeded apart); the walker's --grid without either. Every grid trains on --task.
+std::vector<ExpertSpec> ppo_expert_specs(const TrainFlags& f, const nlohmann::json& config) {
+  std::vector<ExpertGrid> grids;
+  if (config.contains("grids")) grids = config["grids"].get<std::vector<ExpertGrid>>();
+  if (config.contains("grid")) grids.push_back(config["grid"].get<ExpertGrid>());
+  if (grids.empty() && f.task != "walker")
+    throw std::invalid_argument("experts train --task " + f.task + ": --config must give a 'grid' or 'grids'");
+  if (grids.empty()) grids.push_back(f.grid == "small" ? small_walker_grid() : paper_walker_grid());
+  std::vector<ExpertSpec> specs;
+  for (auto& grid : grids) {
+    grid.task = f.task;
+    for (auto& s : expand(grid)) specs.push_back(std::move(s));
   }
+  return specs;
+}
+
+void run_train_ppo(const TrainFlags& f) {
+  const nlohmann::json config = f.config.empty() ? nlohmann::json::object() : read_json_file(f.config);
+  ExpertTrainOptions options;
+  if (config.contains("training")) options = config["training"].get<ExpertTrainOptions>();
   if (f.steps > 0) options.total_steps = f.steps;
   options.device = f.device;
-  const auto specs = selected(expand(grid), f.only);
+  const auto specs = selected(ppo_expert_specs(f, config), f.only);
   fs::create_directories(f.out_dir);
   std::printf("training %zu expert(s) into %s, %lld steps each, %d at a time\n", specs.size(), f.out_dir.c_str(),
               static_cast<long long>(options.total_steps), f.jobs);
@@ -164,9 +173,8 @@ void run_train_arm(const TrainFlags& f) {
 }
 
 void run_train(const TrainFlags& f) {
-  require_known_task(f.task);
   if (f.task == "arm") return run_train_arm(f);
-  run_train_walker(f);
+  run_train_ppo(f);
 }
 
 std::vector<std::string> expert_dirs(const std::string& root, const std::vector<std::string>& only) {
@@ -305,12 +313,12 @@ void add_expert_commands(CLI::App& app) {
 
   auto t = std::make_shared<TrainFlags>();
   CLI::App* train = experts->add_subcommand("train", "train target-speed experts with PPO (resumable)");
-  train->add_option("--task", t->task, "walker (PPO, target speeds) or arm (DDPG, random reach targets)")
-      ->check(CLI::IsMember({"walker", "arm"}))->capture_default_str();
+  train->add_option("--task", t->task, "walker (PPO, target speeds), humanoid (PPO, styles; needs --config) or arm (DDPG, random reach targets)")
+      ->check(CLI::IsMember({"walker", "humanoid", "arm"}))->capture_default_str();
   train->add_option("--out-dir", t->out_dir, "one run directory per expert goes here")->capture_default_str();
   train->add_option("--grid", t->grid, "paper: 72 experts (6 speed groups x 4 log-std x 3 seeds); small: 12")
       ->check(CLI::IsMember({"paper", "small"}))->capture_default_str();
-  train->add_option("--config", t->config, "JSON with optional 'grid' (walker) and 'training' objects (e.g. configs/walker_experts_published.json)")
+  train->add_option("--config", t->config, "JSON with optional 'grid' or 'grids' (PPO tasks) and 'training' objects (e.g. configs/walker_experts_published.json, configs/humanoid_experts.json)")
       ->check(CLI::ExistingFile);
   train->add_option("--only", t->only, "train only these expert ids");
   train->add_option("--steps", t->steps, "environment steps per expert (overrides the config)")->check(CLI::Range(int64_t{1}, int64_t{1} << 40));
@@ -334,8 +342,8 @@ void add_expert_commands(CLI::App& app) {
   CLI::App* demos = app.add_subcommand("demos", "demonstration sets from experts");
   demos->require_subcommand(1);
   CLI::App* collect = demos->add_subcommand("collect", "roll experts out into an HDF5 demonstration file");
-  collect->add_option("--task", c->task, "walker or arm (the experts' kind)")
-      ->check(CLI::IsMember({"walker", "arm"}))->capture_default_str();
+  collect->add_option("--task", c->task, "walker, humanoid (PPO experts: their own task) or arm (the experts' kind)")
+      ->check(CLI::IsMember({"walker", "humanoid", "arm"}))->capture_default_str();
   collect->add_option("--experts-dir", c->dirs, "directories of expert runs (expert ids must not repeat across them)")->capture_default_str();
   collect->add_option("--only", c->only, "collect only from these expert ids");
   collect->add_option("--passing", c->passing, "collect only from experts that pass in these `experts eval --json` reports")

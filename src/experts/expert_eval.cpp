@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "env/walker.h"
 #include "experts/agent_policy.h"
 #include "util/rng.h"
 
@@ -16,7 +15,7 @@ bool ExpertEvaluation::passes(double max_error, double max_fall_rate) const {
 }
 
 ExpertEvaluation evaluate_expert(const LoadedExpert& expert, const ExpertEvalOptions& o) {
-  WalkerEnv prototype;
+  const auto prototype = make_expert_env(expert.spec);
   ExpertEvaluation result;
   result.id = expert.spec.id;
   for (double target : expert.spec.targets) {
@@ -25,12 +24,11 @@ ExpertEvaluation evaluate_expert(const LoadedExpert& expert, const ExpertEvalOpt
     for (int k = 0; k < o.episodes_per_target; ++k) {
       request.seeds.push_back(derive_seed(o.seed, k));
       request.contexts.push_back({target});
-      conditions.push_back(expert.spec.conditioned() ? std::vector<float>{static_cast<float>(target)}
-                                                     : std::vector<float>{});
+      conditions.push_back(expert.spec.condition_for(target));
     }
     request.num_envs = o.num_envs;
     request.num_threads = o.threads;
-    const auto episodes = record_episodes(prototype, request,
+    const auto episodes = record_episodes(*prototype, request,
                                           agent_batch_policy(expert.agent, conditions, o.stochastic, o.seed));
     TargetResult t;
     t.target = target;

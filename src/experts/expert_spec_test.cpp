@@ -50,5 +50,35 @@ TEST(ExpertSpec, AFirstSeedContinuesAnEarlierGridWithoutReusingItsIds) {
   EXPECT_EQ(nlohmann::json(later).get<ExpertGrid>().first_seed, 4);
 }
 
+TEST(ExpertSpec, OneHotConditionsNameTheTargetsPosition) {
+  const auto grid = nlohmann::json::parse(R"({"groups": [[0, 3, 1], [2]], "init_log_stds": [-1], "seeds": 1,
+                                               "task": "humanoid", "condition": "one_hot"})").get<ExpertGrid>();
+  const auto specs = expand(grid);
+  ASSERT_EQ(specs.size(), 2u);
+  const ExpertSpec& styles = specs[0];
+  EXPECT_EQ(styles.id, "humanoid_ctx0_3_1_logstd-1_seed0");
+  EXPECT_EQ(styles.task, "humanoid");
+  EXPECT_EQ(styles.condition_dim(), 3);
+  EXPECT_EQ(styles.condition_for(3), (std::vector<float>{0, 1, 0}));
+  EXPECT_EQ(styles.condition_for(1), (std::vector<float>{0, 0, 1}));
+  EXPECT_THROW(styles.condition_for(2), std::invalid_argument);
+  EXPECT_EQ(specs[1].condition_dim(), 0);  // a single style needs no condition
+  EXPECT_TRUE(specs[1].condition_for(2).empty());
+  const ExpertSpec back = nlohmann::json(styles).get<ExpertSpec>();
+  EXPECT_EQ(back.task, "humanoid");
+  EXPECT_EQ(back.condition_for(1), styles.condition_for(1));
+
+  // The walker's experts keep the value itself, and spec files from before tasks read as theirs.
+  const ExpertSpec walker = expand(paper_walker_grid())[50];
+  ASSERT_TRUE(walker.conditioned());
+  EXPECT_EQ(walker.condition_for(-1), std::vector<float>{-1});
+  const auto old = nlohmann::json::parse(R"({"id": "a", "targets": [0, 1], "init_log_std": -1, "seed": 0})")
+                       .get<ExpertSpec>();
+  EXPECT_EQ(old.task, "walker");
+  EXPECT_EQ(old.condition_dim(), 1);
+  EXPECT_THROW(nlohmann::json::parse(R"({"groups": [[0]], "init_log_stds": [-1], "seeds": 1, "condition": "bits"})")
+                   .get<ExpertGrid>(), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace vaegail

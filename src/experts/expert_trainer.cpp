@@ -1,8 +1,11 @@
 #include "experts/expert_trainer.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
+#include "env/registry.h"
 #include "env/vec_env.h"
 #include "env/walker.h"
 #include "rl/rollout.h"
@@ -40,6 +43,24 @@ void from_json(const nlohmann::json& j, ExpertTrainOptions& o) {
   o.checkpoint_every = j.value("checkpoint_every", d.checkpoint_every);
   o.device = j.value("device", d.device);
   o.posture_cost = j.value("posture_cost", d.posture_cost);
+}
+
+std::unique_ptr<Env> make_expert_env(const ExpertSpec& spec, double posture_cost) {
+  if (spec.targets.empty()) throw std::invalid_argument(spec.id + ": no target");
+  std::unique_ptr<Env> env;
+  if (spec.task == "walker") {
+    WalkerOptions walker;
+    walker.posture_cost = posture_cost;
+    env = std::make_unique<WalkerEnv>(walker);
+  } else if (posture_cost != 0.0) {
+    throw std::invalid_argument(spec.id + ": posture_cost is the walker's, not " + spec.task + "'s");
+  } else {
+    EnvRequest request;
+    request.task = spec.task;
+    env = make_env(request);
+  }
+  env->set_context({spec.targets[0]});
+  return env;
 }
 
 std::shared_ptr<Agent> make_expert_agent(const ExpertSpec& spec, const ExpertTrainOptions& options,
@@ -85,19 +106,17 @@ void save(Agent& agent, const RunState& s, const std::string& run_dir) {
                                         {"seconds", s.seconds}}.dump(2));
 }
 
-// Mean |forward speed - target| over the rollout's steps: a cheap training-time signal (the
-// torso's speed stands in for the centre of mass's); `vaegail experts eval` measures properly.
-double speed_error(const Rollout& r, const ExpertSpec& spec, int speed_index) {
-  torch::Tensor speed = r.observations.select(2, speed_index);
+// The walker's mean |forward speed - target| over the rollout's steps: a cheap training-time
+// signal (the torso's speed stands in for the centre of mass's); `vaegail experts eval`
+// measures properly. NaN for tasks whose context is no speed (the humanoid's style).
+double speed_error(const Rollout& r, const ExpertSpec& spec, const Env& env) {
+  const auto& names = env.observation_spec().names;
+  const auto speed_at = std::find(names.begin(), names.end(), "rootx_vel");
+  if (spec.task != "walker" || speed_at == names.end()) return std::nan("");
+  torch::Tensor speed = r.observations.select(2, static_cast<int64_t>(speed_at - names.begin()));
   torch::Tensor target = spec.conditioned() ? r.conditions.select(2, 0)
                                             : torch::full_like(speed, spec.targets[0]);
   return (speed - target).abs().mean().item<double>();
-}
-
-int index_of(const std::vector<std::string>& names, const std::string& name) {
-  for (size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) return static_cast<int>(i);
-  throw std::invalid_argument("observation has no '" + name + "'");
 }
 
 }  // namespace
@@ -108,7 +127,7 @@ std::int64_t expert_steps(const std::string& run_dir) { return read_state(run_di
 
 void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, const std::string& run_dir,
                   const std::function<void(std::int64_t)>& progress) {
-  if (spec.targets.empty()) throw std::invalid_argument(spec.id + ": no target speed");
+  auto prototype = make_expert_env(spec, options.posture_cost);  // checks the spec before touching run_dir
   fs::create_directories(run_dir);
   const std::string spec_path = run_dir + "/spec.json";
   if (fs::exists(spec_path)) {
@@ -120,22 +139,18 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
   }
   write_file_atomically(run_dir + "/options.json", nlohmann::json(options).dump(2));
 
-  WalkerOptions walker;
-  walker.posture_cost = options.posture_cost;
-  WalkerEnv prototype(walker);
-  prototype.set_context({spec.targets[0]});
-  auto agent = make_expert_agent(spec, options, prototype.obs_dim(), prototype.act_dim());
+  auto agent = make_expert_agent(spec, options, prototype->obs_dim(), prototype->act_dim());
   RunState state = read_state(run_dir);
   if (state.iteration > 0) agent->load_checkpoint(run_dir + "/agent.pt");
   if (state.steps >= options.total_steps) return;
 
-  VecEnv envs(prototype, options.num_envs, options.env_threads);
+  VecEnv envs(*prototype, options.num_envs, options.env_threads);
   // Streams restart from the iteration count, so a resumed run is reproducible too.
   Rng target_rng(derive_seed(spec.seed, 1000 + state.iteration));
   EpisodeStartFn choose_target = [&](int, Env& env) -> std::vector<float> {
     const double target = spec.targets[target_rng.next() % spec.targets.size()];
     env.set_context({target});
-    return spec.conditioned() ? std::vector<float>{static_cast<float>(target)} : std::vector<float>{};
+    return spec.condition_for(target);
   };
   RolloutCollector collector(envs, agent, derive_seed(spec.seed, state.iteration), choose_target);
   PpoOptions ppo_options;
@@ -148,7 +163,6 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
   CsvLog log(run_dir + "/metrics.csv",
              {"iteration", "steps", "episodes", "mean_return", "mean_length", "fall_rate", "speed_error",
               "approx_kl", "entropy", "value_loss", "seconds"});
-  const int speed_index = index_of(prototype.observation_spec().names, "rootx_vel");
   const auto start = std::chrono::steady_clock::now();
   const double seconds_before = state.seconds;
 
@@ -166,7 +180,7 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
     }
     const double n = std::max<size_t>(rollout.episodes.size(), 1);
     log.write({double(state.iteration), double(state.steps), double(rollout.episodes.size()), returns / n,
-               lengths / n, falls / n, speed_error(rollout, spec, speed_index), stats.approx_kl, stats.entropy,
+               lengths / n, falls / n, speed_error(rollout, spec, *prototype), stats.approx_kl, stats.entropy,
                stats.value_loss, state.seconds});
     state.done = state.steps >= options.total_steps;
     if (state.done || state.iteration % options.checkpoint_every == 0) save(*agent, state, run_dir);
@@ -181,8 +195,8 @@ LoadedExpert load_expert(const std::string& run_dir) {
   LoadedExpert e;
   e.spec = read_json_file(run_dir + "/spec.json").get<ExpertSpec>();
   e.options = read_json_file(run_dir + "/options.json").get<ExpertTrainOptions>();
-  WalkerEnv prototype;
-  e.agent = make_expert_agent(e.spec, e.options, prototype.obs_dim(), prototype.act_dim());
+  const auto prototype = make_expert_env(e.spec);
+  e.agent = make_expert_agent(e.spec, e.options, prototype->obs_dim(), prototype->act_dim());
   e.agent->load_checkpoint(run_dir + "/agent.pt");
   e.agent->normalizer().set_frozen(true);
   e.agent->eval();

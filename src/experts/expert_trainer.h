@@ -1,5 +1,6 @@
-// Trains one walker expert with PPO on the target-speed reward, in a run directory that a
-// killed run resumes from:
+// Trains one expert with PPO on its task's reward (the walker's target speed, the humanoid's
+// style; ExpertSpec::task names the registry's task), in a run directory that a killed run
+// resumes from:
 //   run_dir/spec.json      the ExpertSpec
 //   run_dir/options.json   the training options
 //   run_dir/agent.pt       policy, critic and observation normaliser (written atomically)
@@ -14,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "env/env.h"
 #include "experts/expert_spec.h"
 #include "rl/agent.h"
 #include "rl/ppo.h"
@@ -34,11 +36,15 @@ struct ExpertTrainOptions {
   double target_kl = 0.02;
   int checkpoint_every = 5;  // iterations
   std::string device = "cpu";
-  double posture_cost = 0.0;  // WalkerOptions::posture_cost of the training reward (0: the published experts')
+  double posture_cost = 0.0;  // walker only: WalkerOptions::posture_cost of the training reward (0: the published experts')
 };
 
 void to_json(nlohmann::json& j, const ExpertTrainOptions& o);
 void from_json(const nlohmann::json& j, ExpertTrainOptions& o);
+
+// The environment an expert trains in, in its spec's first context: the registry's task, with
+// the walker's posture cost (throws for a posture cost on another task).
+std::unique_ptr<Env> make_expert_env(const ExpertSpec& spec, double posture_cost = 0.0);
 
 std::shared_ptr<Agent> make_expert_agent(const ExpertSpec& spec, const ExpertTrainOptions& options,
                                          int obs_dim, int act_dim);

@@ -90,6 +90,39 @@ TEST(ExpertTrainer, ResumesFromItsRunDirectoryAndLoadsForEvaluation) {
   EXPECT_THROW(load_expert(dir), std::runtime_error);
 }
 
+TEST(ExpertTrainer, TrainsTheHumanoidsStylesOnOneHotConditionsAndCollectsThem) {
+  torch::set_num_threads(1);
+  const std::string dir = (fs::temp_directory_path() / "vaegail_humanoid_expert_run").string();
+  fs::remove_all(dir);
+  ExpertSpec spec{"styles", {0.0, 3.0}, -1.0, 1, "humanoid", "one_hot"};
+  train_expert(spec, tiny(64), dir);
+  EXPECT_TRUE(expert_done(dir));
+  train_expert(spec, tiny(128), dir);
+  EXPECT_EQ(rows(dir + "/metrics.csv"), 2);
+  const LoadedExpert expert = load_expert(dir);
+  EXPECT_EQ(expert.spec.task, "humanoid");
+  EXPECT_EQ(expert.agent->condition_dim(), 2);
+  EXPECT_EQ(expert.agent->obs_dim(), 137);
+  EXPECT_EQ(expert.agent->act_dim(), 56);
+  // The walker's posture cost has no meaning for another body.
+  auto walker_only = tiny(64);
+  walker_only.posture_cost = 0.5;
+  EXPECT_THROW(train_expert(spec, walker_only, dir + "_posture"), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(dir + "_posture"));
+
+  const std::string demos = dir + "/demos.h5";
+  CollectOptions collect;
+  collect.episodes_per_expert = 2;
+  collect_demos({dir}, demos, collect);
+  const DemoSet set = read_demos(demos);
+  EXPECT_EQ(set.header.env_id, "humanoid");
+  EXPECT_EQ(set.header.context_names, std::vector<std::string>{"style"});
+  ASSERT_EQ(set.episodes.size(), 2u);
+  EXPECT_EQ(set.episodes[0].context, std::vector<double>{0.0});
+  EXPECT_EQ(set.episodes[1].context, std::vector<double>{3.0});
+  fs::remove_all(dir);
+}
+
 TEST(ExpertTrainer, PostureCostRoundTripsThroughJsonAndDefaultsToNone) {
   ExpertTrainOptions o;
   o.posture_cost = 0.5;
