@@ -12,6 +12,7 @@ packages=(
   libopenblas0-openmp     # BLAS for LibTorch: ~8x faster LSTMs than the reference BLAS
   libcli11-dev nlohmann-json3-dev libpng-dev
   libgtest-dev libbenchmark-dev
+  python3-h5py python3-numpy  # tests: fixtures in the layouts of h5py, Minari and imitation
 )
 
 missing=()

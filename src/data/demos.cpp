@@ -6,20 +6,16 @@
 
 #include "data/hdf5_handle.h"
 #include "util/atomic_file.h"
+#include "util/sha256.h"
 
 namespace vaegail {
 
 namespace {
 
 const char* const kFormat = "vaegail-demos";
+const char* const kBody = "body_mjcf";
 // Attributes every episode carries; anything else numeric is an extra attribute.
 const char* const kEpisodeAttrs[] = {"id", "total_steps", "expert_id", "context", "seed"};
-
-std::string shape_text(const std::vector<hsize_t>& dims) {
-  std::string s = "[";
-  for (size_t i = 0; i < dims.size(); ++i) s += (i ? ", " : "") + std::to_string(dims[i]);
-  return s + "]";
-}
 
 template <typename T>
 void check_finite(const std::vector<T>& values, size_t row_width, const std::string& where) {
@@ -140,6 +136,11 @@ void DemoWriter::commit() {
   h5::write_string_attr(root, "action_names", json_list(header_.action_names));
   h5::write_string_attr(root, "feature_names", json_list(header_.feature_names));
   h5::write_string_attr(root, "context_names", json_list(header_.context_names));
+  if (!header_.body_mjcf.empty()) {
+    h5::write_dataset(root, kBody, H5T_NATIVE_UINT8, H5T_STD_U8LE, {header_.body_mjcf.size()},
+                      header_.body_mjcf.data(), path_);
+    h5::write_string_attr(root, "body_sha256", sha256_hex(header_.body_mjcf));
+  }
   if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw DataError(h5::with_cause(path_ + ": cannot flush file"));
   // Closing writes what HDF5 still caches: on a full disk this is where it fails.
   const herr_t closed = H5Fclose(file_);
@@ -151,39 +152,6 @@ void DemoWriter::commit() {
 
 namespace {
 
-// Opens a dataset, checks its type class and shape, and reads it into `out`.
-template <typename T>
-void read_dataset(hid_t group, const std::string& name, H5T_class_t cls, hid_t mem_type,
-                  const std::vector<hsize_t>& expected, std::vector<T>& out, const std::string& where) {
-  const std::string field = where + "/" + name;
-  h5::require_link(group, name, field, "dataset");
-  h5::Handle ds(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose);
-  if (!ds.valid()) throw DataError(h5::with_cause(field + ": cannot open dataset"));
-  h5::Handle type(H5Dget_type(ds.get()), H5Tclose);
-  const H5T_class_t found = H5Tget_class(type.get());
-  const bool is_bool = cls == H5T_ENUM;
-  const bool type_ok = is_bool ? ((found == H5T_ENUM || found == H5T_INTEGER) && H5Tget_size(type.get()) == 1)
-                               : found == cls;
-  if (!type_ok)
-    throw DataError(field + ": wrong dtype (expected " +
-                    (is_bool ? std::string("bool") : cls == H5T_FLOAT ? "float" : "integer") + ")");
-  const auto dims = h5::dataset_shape(ds.get());
-  if (dims != expected)
-    throw DataError(field + ": shape " + shape_text(dims) + ", expected " + shape_text(expected));
-  out.resize(h5::checked_elements(dims, sizeof(T), field));
-  // 1-byte booleans are read as stored: HDF5 does not convert enums to integers.
-  const hid_t read_type = is_bool ? type.get() : mem_type;
-  if (!out.empty() && H5Dread(ds.get(), read_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-    throw DataError(h5::with_cause(field + ": cannot read"));
-}
-
-std::vector<hsize_t> leading_dims(hid_t group, const std::string& name, const std::string& where) {
-  h5::require_link(group, name, where + "/" + name, "dataset");
-  h5::Handle ds(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose);
-  if (!ds.valid()) throw DataError(h5::with_cause(where + "/" + name + ": cannot open dataset"));
-  return h5::dataset_shape(ds.get());
-}
-
 Episode read_episode(hid_t file, int index, const DemoHeader& h, const std::string& path) {
   const std::string name = "episode_" + std::to_string(index);
   const std::string where = path + ": " + name;
@@ -191,18 +159,18 @@ Episode read_episode(hid_t file, int index, const DemoHeader& h, const std::stri
   h5::Handle group(H5Gopen2(file, name.c_str(), H5P_DEFAULT), H5Gclose);
   if (!group.valid()) throw DataError(h5::with_cause(where + ": cannot open episode group"));
   const hid_t g = group.get();
-  const auto reward_dims = leading_dims(g, "rewards", where);
+  const auto reward_dims = h5::dataset_dims(g, "rewards", where);
   if (reward_dims.size() != 1)
-    throw DataError(where + "/rewards: shape " + shape_text(reward_dims) + ", expected [T]");
+    throw DataError(where + "/rewards: shape " + h5::shape_text(reward_dims) + ", expected [T]");
   // Bounds T before T + 1 and T * width are formed from it.
   const hsize_t T = reward_dims[0];
   h5::checked_elements({T}, sizeof(double), where + "/rewards");
   Episode e;
-  read_dataset(g, "rewards", H5T_FLOAT, H5T_NATIVE_DOUBLE, {T}, e.rewards, where);
-  read_dataset(g, "observations", H5T_FLOAT, H5T_NATIVE_FLOAT, {T + 1, hsize_t(h.obs_dim())}, e.observations, where);
-  read_dataset(g, "actions", H5T_FLOAT, H5T_NATIVE_FLOAT, {T, hsize_t(h.act_dim())}, e.actions, where);
-  read_dataset(g, "terminations", H5T_ENUM, H5T_NATIVE_UINT8, {T}, e.terminations, where);
-  read_dataset(g, "truncations", H5T_ENUM, H5T_NATIVE_UINT8, {T}, e.truncations, where);
+  h5::read_dataset(g, "rewards", H5T_FLOAT, H5T_NATIVE_DOUBLE, {T}, e.rewards, where);
+  h5::read_dataset(g, "observations", H5T_FLOAT, H5T_NATIVE_FLOAT, {T + 1, hsize_t(h.obs_dim())}, e.observations, where);
+  h5::read_dataset(g, "actions", H5T_FLOAT, H5T_NATIVE_FLOAT, {T, hsize_t(h.act_dim())}, e.actions, where);
+  h5::read_dataset(g, "terminations", H5T_ENUM, H5T_NATIVE_UINT8, {T}, e.terminations, where);
+  h5::read_dataset(g, "truncations", H5T_ENUM, H5T_NATIVE_UINT8, {T}, e.truncations, where);
   const size_t nf = h.feature_names.size();
   e.features.resize((T + 1) * nf);
   if (nf > 0) {
@@ -211,7 +179,7 @@ Episode read_episode(hid_t file, int index, const DemoHeader& h, const std::stri
     if (!fg.valid()) throw DataError(h5::with_cause(where + "/features: cannot open group"));
     std::vector<double> column;
     for (size_t f = 0; f < nf; ++f) {
-      read_dataset(fg.get(), h.feature_names[f], H5T_FLOAT, H5T_NATIVE_DOUBLE, {T + 1}, column, where + "/features");
+      h5::read_dataset(fg.get(), h.feature_names[f], H5T_FLOAT, H5T_NATIVE_DOUBLE, {T + 1}, column, where + "/features");
       for (size_t t = 0; t <= T; ++t) e.features[t * nf + f] = column[t];
     }
   }
@@ -232,6 +200,21 @@ Episode read_episode(hid_t file, int index, const DemoHeader& h, const std::stri
   }
   validate_episode(e, h, where);
   return e;
+}
+
+// The stored MJCF text, checked against its SHA-256; "" when the file has none.
+std::string read_body(hid_t root, const std::string& path) {
+  const std::string where = path + ": /";
+  if (!h5::has_link(root, kBody, where)) return "";
+  const auto dims = h5::dataset_dims(root, kBody, where);
+  if (dims.size() != 1) throw DataError(where + kBody + ": shape " + h5::shape_text(dims) + ", expected [n]");
+  std::vector<std::uint8_t> bytes;
+  h5::read_dataset(root, kBody, H5T_INTEGER, H5T_NATIVE_UINT8, dims, bytes, where);
+  std::string text(bytes.begin(), bytes.end());
+  const std::string stated = h5::read_string_attr(root, "body_sha256", where), found = sha256_hex(text);
+  if (stated != found)
+    throw DataError(path + ": body_mjcf fails its SHA-256 (attribute body_sha256 " + stated + ", contents " + found + ")");
+  return text;
 }
 
 }  // namespace
@@ -264,6 +247,7 @@ DemoSet read_demos(const std::string& path) {
   h.action_names = parse_list(h5::read_string_attr(root, "action_names", where), where + "action_names");
   h.feature_names = parse_list(h5::read_string_attr(root, "feature_names", where), where + "feature_names");
   h.context_names = parse_list(h5::read_string_attr(root, "context_names", where), where + "context_names");
+  h.body_mjcf = read_body(root, path);
   const auto total = h5::read_double_attr(root, "total_episodes", where);
   // Each episode is a group under the root, so the count cannot exceed the root's links.
   if (total.size() != 1 || !(total[0] >= 0) || total[0] > double(h5::link_count(root)) ||

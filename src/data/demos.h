@@ -4,7 +4,11 @@
 //   /                       attrs: format, format_version, env_id, control_timestep,
 //                                  observation_names, action_names, feature_names,
 //                                  context_names (JSON lists as UTF-8 strings),
-//                                  total_episodes, total_steps
+//                                  total_episodes, total_steps;
+//                                  body_sha256 (hex) when the file has a body_mjcf
+//   /body_mjcf                  uint8 [n]  the MJCF text of a user's body (GenericTaskEnv), so
+//                               that later stages rebuild its environment from the file alone;
+//                               absent for built-in tasks and in files of other tools
 //   /episode_{i}/observations   float32 [T+1, obs_dim]
 //   /episode_{i}/actions        float32 [T, act_dim]
 //   /episode_{i}/rewards        float64 [T]
@@ -38,6 +42,7 @@ struct DemoHeader {
   std::string env_id;
   double control_timestep = 0.0;
   std::vector<std::string> observation_names, action_names, feature_names, context_names;
+  std::string body_mjcf;  // empty: the task is built in (env_id names it)
   int obs_dim() const { return static_cast<int>(observation_names.size()); }
   int act_dim() const { return static_cast<int>(action_names.size()); }
 };
@@ -94,7 +99,7 @@ class DemoWriter {
 void validate_episode(const Episode& episode, const DemoHeader& header, const std::string& where);
 
 // Reads and validates a whole file. Throws DataError on anything missing, malformed or failing
-// a checksum; sizes are checked before anything is allocated for them. Files of other tools
+// a checksum (body_mjcf against body_sha256 too); sizes are checked before anything is allocated for them. Files of other tools
 // (h5py: contiguous or chunked, gzip, extra groups, variable-length strings) read as well.
 DemoSet read_demos(const std::string& path);
 

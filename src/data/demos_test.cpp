@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "data/demos_test_support.h"
+#include "data/hdf5_handle.h"
 #include "util/atomic_file.h"
 
 namespace vaegail {
@@ -250,6 +251,50 @@ TEST(Demos, AFlippedByteInTheMetadataIsRejected) {
   flip_bytes(path, 20, 1);  // inside the superblock, before its checksum
   expect_error(path, {path});
   std::remove(path.c_str());
+}
+
+const char* const kBodyText = "<mujoco model=\"mine\"><worldbody><body><geom size=\"0.1\"/></body></worldbody></mujoco>";
+
+std::string write_file_with_body(const std::string& name) {
+  const std::string path = temp_demo_path(name);
+  DemoHeader h = toy_header();
+  h.body_mjcf = kBodyText;
+  DemoWriter w(path, h);
+  for (int i = 0; i < 2; ++i) w.append(toy_file_episode(i));
+  w.commit();
+  return path;
+}
+
+TEST(Demos, TheBodyTravelsWithTheFileInAChecksummedDataset) {
+  const std::string path = write_file_with_body("body");
+  const DemoSet set = read_demos(path);
+  EXPECT_EQ(set.header.body_mjcf, kBodyText);
+  EXPECT_EQ(toy_contents_difference(set), "");
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t ds = H5Dopen2(f, "body_mjcf", H5P_DEFAULT), plist = H5Dget_create_plist(ds);
+  unsigned flags = 0, filter_info = 0;
+  size_t n = 0;
+  EXPECT_GE(H5Pget_filter_by_id2(plist, H5Z_FILTER_FLETCHER32, &flags, &n, nullptr, 0, nullptr, &filter_info), 0);
+  H5Pclose(plist);
+  H5Dclose(ds);
+  H5Fclose(f);
+  EXPECT_EQ(read_demos(write_toy_file("no_body")).header.body_mjcf, "");  // built-in tasks store none
+  std::remove(path.c_str());
+}
+
+TEST(Demos, ABodyThatDoesNotMatchItsHashIsRejected) {
+  const std::string path = write_file_with_body("body_hash");
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(H5Adelete(f, "body_sha256"), 0);
+  h5::write_string_attr(f, "body_sha256", std::string(64, '0'));
+  H5Fclose(f);
+  expect_error(path, {path, "body_mjcf fails its SHA-256"});
+  const std::string flipped = write_file_with_body("body_flip");
+  const auto [address, size] = chunk_extent(flipped, "body_mjcf");
+  flip_bytes(flipped, address + size / 2, 1);
+  expect_error(flipped, {flipped, "body_mjcf", "Fletcher32"});
+  std::remove(path.c_str());
+  std::remove(flipped.c_str());
 }
 
 TEST(Demos, ACorruptDimensionIsRejectedBeforeAnythingIsAllocated) {

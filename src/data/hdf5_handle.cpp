@@ -139,6 +139,58 @@ void require_link(hid_t parent, const std::string& name, const std::string& wher
   if (exists == 0) throw DataError(where + ": missing " + kind);
 }
 
+std::string shape_text(const std::vector<hsize_t>& dims) {
+  std::string s = "[";
+  for (size_t i = 0; i < dims.size(); ++i) s += (i ? ", " : "") + std::to_string(dims[i]);
+  return s + "]";
+}
+
+bool has_link(hid_t parent, const std::string& name, const std::string& where) {
+  const htri_t exists = H5Lexists(parent, name.c_str(), H5P_DEFAULT);
+  if (exists < 0) throw DataError(with_cause(where + ": cannot look up " + name));
+  return exists > 0;
+}
+
+template <typename T>
+void read_dataset(hid_t group, const std::string& name, H5T_class_t cls, hid_t mem_type,
+                  const std::vector<hsize_t>& expected, std::vector<T>& out, const std::string& where) {
+  const std::string field = where + "/" + name;
+  require_link(group, name, field, "dataset");
+  Handle ds(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!ds.valid()) throw DataError(with_cause(field + ": cannot open dataset"));
+  Handle type(H5Dget_type(ds.get()), H5Tclose);
+  const H5T_class_t found = H5Tget_class(type.get());
+  const bool is_bool = cls == H5T_ENUM;
+  const bool type_ok = is_bool ? ((found == H5T_ENUM || found == H5T_INTEGER) && H5Tget_size(type.get()) == 1)
+                               : found == cls;
+  if (!type_ok)
+    throw DataError(field + ": wrong dtype (expected " +
+                    (is_bool ? std::string("bool") : cls == H5T_FLOAT ? "float" : "integer") + ")");
+  const auto dims = dataset_shape(ds.get());
+  if (dims != expected)
+    throw DataError(field + ": shape " + shape_text(dims) + ", expected " + shape_text(expected));
+  out.resize(checked_elements(dims, sizeof(T), field));
+  // 1-byte booleans are read as stored: HDF5 does not convert enums to integers.
+  const hid_t read_type = is_bool ? type.get() : mem_type;
+  if (!out.empty() && H5Dread(ds.get(), read_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw DataError(with_cause(field + ": cannot read"));
+}
+
+template void read_dataset<float>(hid_t, const std::string&, H5T_class_t, hid_t, const std::vector<hsize_t>&,
+                                  std::vector<float>&, const std::string&);
+template void read_dataset<double>(hid_t, const std::string&, H5T_class_t, hid_t, const std::vector<hsize_t>&,
+                                   std::vector<double>&, const std::string&);
+template void read_dataset<std::uint8_t>(hid_t, const std::string&, H5T_class_t, hid_t,
+                                         const std::vector<hsize_t>&, std::vector<std::uint8_t>&,
+                                         const std::string&);
+
+std::vector<hsize_t> dataset_dims(hid_t group, const std::string& name, const std::string& where) {
+  require_link(group, name, where + "/" + name, "dataset");
+  Handle ds(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!ds.valid()) throw DataError(with_cause(where + "/" + name + ": cannot open dataset"));
+  return dataset_shape(ds.get());
+}
+
 std::vector<hsize_t> dataset_shape(hid_t dataset) {
   Handle space(H5Dget_space(dataset), H5Sclose);
   const int rank = H5Sget_simple_extent_ndims(space.get());

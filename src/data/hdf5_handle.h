@@ -10,6 +10,7 @@
 
 #include <hdf5.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -56,7 +57,19 @@ Handle bool_type();
 // Throws "`where`: missing `kind`" when `parent` has no link `name`, or HDF5's reason when the
 // lookup itself fails (a corrupted link table must not read as a missing dataset).
 void require_link(hid_t parent, const std::string& name, const std::string& where, const std::string& kind);
+// Whether `parent` has a link `name`; throws HDF5's reason when the lookup fails.
+bool has_link(hid_t parent, const std::string& name, const std::string& where);
 std::vector<hsize_t> dataset_shape(hid_t dataset);
+// The shape of dataset `name` under `group` (which must have it).
+std::vector<hsize_t> dataset_dims(hid_t group, const std::string& name, const std::string& where);
+// "[3, 4]"
+std::string shape_text(const std::vector<hsize_t>& dims);
+// Opens dataset `name`, checks its type class (H5T_FLOAT, H5T_INTEGER, or H5T_ENUM for 1-byte
+// booleans) and its shape against `expected`, and reads it into `out` converted to `mem_type`.
+// Messages name `where`/`name`. Defined for float, double and std::uint8_t.
+template <typename T>
+void read_dataset(hid_t group, const std::string& name, H5T_class_t cls, hid_t mem_type,
+                  const std::vector<hsize_t>& expected, std::vector<T>& out, const std::string& where);
 // The number of elements of `dims`; throws when they overflow or `element_bytes` each would
 // exceed what a demonstration file holds (kMaxDatasetBytes).
 hsize_t checked_elements(const std::vector<hsize_t>& dims, size_t element_bytes, const std::string& where);

@@ -19,6 +19,7 @@ DemoHeader header_for(const Env& env) {
   h.action_names = env.action_spec().names;
   h.feature_names = env.feature_names();
   h.context_names = env.context_names();
+  h.body_mjcf = env.body_mjcf();
   return h;
 }
 

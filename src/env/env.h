@@ -53,6 +53,10 @@ class Env {
   // Control steps since the last reset.
   virtual int steps_taken() const = 0;
 
+  // The MJCF text of a body the registry rebuilds from its text (a user's file: GenericTaskEnv),
+  // which demonstration files store; empty for the built-in tasks, rebuilt by name.
+  virtual std::string body_mjcf() const { return {}; }
+
   // An independent copy in its initial configuration (same model, context and options).
   virtual std::unique_ptr<Env> clone() const = 0;
 

@@ -1,7 +1,7 @@
 // The MuJoCo side of every environment: a model, its mjData, frame skipping, seeded resets,
-// action clipping and the time limit. Tasks (walker, arm, humanoid) override the hooks;
-// MujocoEnv itself serves any MJCF file a user brings (observation qpos and qvel, zero
-// reward, feature com_speed_x).
+// action clipping and the time limit. Tasks (walker, arm, humanoid, and GenericTaskEnv for any
+// MJCF file a user brings) override the hooks; the defaults are observation qpos and qvel, zero
+// reward, feature com_speed_x.
 #pragma once
 
 #include <memory>

@@ -1,15 +1,22 @@
 #include "env/mujoco_model.h"
 
 #include <algorithm>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace vaegail {
 
 std::shared_ptr<const MujocoModel> MujocoModel::from_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot load MJCF model: no such file or not readable");
+  std::ostringstream text;
+  text << in.rdbuf();
+  // Compiled from the file itself, so that includes and meshes resolve as MuJoCo resolves them.
   char error[1000] = "";
   mjModel* model = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
   if (!model) throw std::runtime_error(path + ": cannot load MJCF model: " + error);
-  return std::shared_ptr<const MujocoModel>(new MujocoModel(model, path));
+  return std::shared_ptr<const MujocoModel>(new MujocoModel(model, path, text.str()));
 }
 
 std::shared_ptr<const MujocoModel> MujocoModel::from_xml(const std::string& name,
@@ -24,7 +31,7 @@ std::shared_ptr<const MujocoModel> MujocoModel::from_xml(const std::string& name
   mjModel* model = mj_loadXML(name.c_str(), vfs.get(), error, sizeof error);
   mj_deleteVFS(vfs.get());
   if (!model) throw std::runtime_error(name + ": cannot load MJCF model: " + error);
-  return std::shared_ptr<const MujocoModel>(new MujocoModel(model, name));
+  return std::shared_ptr<const MujocoModel>(new MujocoModel(model, name, xml));
 }
 
 MujocoModel::~MujocoModel() { mj_deleteModel(model_); }

@@ -21,13 +21,17 @@ class MujocoModel {
 
   const mjModel* get() const { return model_; }
   const std::string& source() const { return source_; }
+  // The MJCF text the model was compiled from (the main file; <include>d files and meshes are
+  // read from beside `source` and not part of it).
+  const std::string& xml() const { return xml_; }
   // Index of a named object; throws naming the model and the object if it is missing.
   int id(mjtObj type, const std::string& name) const;
 
  private:
-  MujocoModel(mjModel* model, std::string source) : model_(model), source_(std::move(source)) {}
+  MujocoModel(mjModel* model, std::string source, std::string xml)
+      : model_(model), source_(std::move(source)), xml_(std::move(xml)) {}
   mjModel* model_;
-  std::string source_;
+  std::string source_, xml_;
 };
 
 // One mjData per environment.

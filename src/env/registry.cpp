@@ -3,8 +3,8 @@
 #include <stdexcept>
 
 #include "env/arm.h"
+#include "env/generic_task.h"
 #include "env/humanoid.h"
-#include "env/mujoco_env.h"
 #include "env/walker.h"
 
 namespace vaegail {
@@ -35,11 +35,16 @@ std::unique_ptr<Env> make_env(const EnvRequest& request) {
     if (request.episode_length > 0) o.episode_length = request.episode_length;
     return std::make_unique<HumanoidEnv>(o);
   }
-  if (ends_with(request.task, ".xml")) {
-    MujocoEnvOptions o;
+  if (!request.mjcf_text.empty() || ends_with(request.task, ".xml")) {
+    GenericTaskOptions o;
     o.frame_skip = request.frame_skip;
-    if (request.episode_length > 0) o.episode_length = request.episode_length;
-    return std::make_unique<MujocoEnv>(MujocoModel::from_file(request.task), o);
+    o.episode_length = request.episode_length;
+    o.terminate_on_fall = request.terminate_on_fall;
+    o.context_names = request.context_names;
+    return std::make_unique<GenericTaskEnv>(request.mjcf_text.empty()
+                                                ? MujocoModel::from_file(request.task)
+                                                : MujocoModel::from_xml(request.task, request.mjcf_text),
+                                            o);
   }
   std::string known;
   for (const auto& t : builtin_tasks()) known += (known.empty() ? "" : ", ") + t;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 
 namespace vaegail {
 
@@ -87,9 +88,11 @@ std::uint32_t crc_of_stored(const char* data, std::uint64_t size) {
   return static_cast<std::uint32_t>(crc);
 }
 
-// Inflates a raw deflate stream piece by piece (nothing sized by the directory is allocated);
-// false when it is malformed or does not inflate to `uncompressed` bytes.
-bool crc_of_deflated(const char* data, std::uint64_t size, std::uint64_t uncompressed, std::uint32_t& crc) {
+// Inflates a raw deflate stream piece by piece (nothing sized by the directory is allocated),
+// appending the bytes to `out` when it is given; false when the stream is malformed or does not
+// inflate to `uncompressed` bytes.
+bool crc_of_deflated(const char* data, std::uint64_t size, std::uint64_t uncompressed, std::uint32_t& crc,
+                     std::string* out_bytes) {
   z_stream z{};
   if (inflateInit2(&z, -MAX_WBITS) != Z_OK) return false;
   std::array<Bytef, 1 << 16> piece;
@@ -105,6 +108,8 @@ bool crc_of_deflated(const char* data, std::uint64_t size, std::uint64_t uncompr
     const uInt produced = static_cast<uInt>(piece.size() - z.avail_out);
     running = ::crc32(running, piece.data(), produced);
     out += produced;
+    if (out > uncompressed) break;  // more than the directory says: damaged
+    if (out_bytes) out_bytes->append(reinterpret_cast<const char*>(piece.data()), produced);
     if (status == Z_OK && produced == 0) break;  // input used up before the stream's end
   }
   inflateEnd(&z);
@@ -116,7 +121,10 @@ bool crc_of_deflated(const char* data, std::uint64_t size, std::uint64_t uncompr
 
 bool looks_like_zip(const std::string& bytes) { return Bytes(bytes).signature(0, kLocalHeader); }
 
-std::string zip_damage(const std::string& bytes) {
+namespace {
+
+// Checks every entry; fills `entries` (when given) with each entry's bytes, inflated.
+std::string walk_entries(const std::string& bytes, std::map<std::string, std::string>* entries) {
   const Bytes b(bytes);
   Directory dir;
   if (!find_directory(b, dir)) return "truncated: no zip directory at the end";
@@ -136,15 +144,28 @@ std::string zip_damage(const std::string& bytes) {
     const std::uint64_t data = local + 30 + b.le(local + 26, 2) + b.le(local + 28, 2);
     if (!b.has(data, size)) return "entry " + name + " runs past the end of the file: truncated";
     std::uint32_t crc = 0;
+    std::string* content = entries ? &(*entries)[name] : nullptr;
     if (method == kStored) {
       crc = crc_of_stored(b.at(data), size);
-    } else if (!crc_of_deflated(b.at(data), size, uncompressed, crc)) {
+      if (content) content->assign(b.at(data), size);
+    } else if (!crc_of_deflated(b.at(data), size, uncompressed, crc, content)) {
       return "entry " + name + ": compressed data damaged";
     }
     if (crc != b.le(p + 16, 4)) return "entry " + name + " fails its CRC-32";
     p += 46 + name_length + extra_length + comment_length;
   }
   return "";
+}
+
+}  // namespace
+
+std::string zip_damage(const std::string& bytes) { return walk_entries(bytes, nullptr); }
+
+std::map<std::string, std::string> zip_entries(const std::string& bytes) {
+  std::map<std::string, std::string> entries;
+  const std::string damage = walk_entries(bytes, &entries);
+  if (!damage.empty()) throw std::runtime_error(damage);
+  return entries;
 }
 
 }  // namespace vaegail

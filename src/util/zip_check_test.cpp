@@ -66,5 +66,15 @@ TEST(ZipCheck, ADamagedDirectoryIsReportedNotFollowed) {
   EXPECT_EQ(zip_damage(zip), "entry archive/data.pkl: local header damaged");
 }
 
+TEST(ZipCheck, EntriesReadBackByNameAndDamageThrows) {
+  const auto entries = zip_entries(stored_zip(kEntries));
+  ASSERT_EQ(entries.size(), 2u);
+  EXPECT_EQ(entries.at("archive/data.pkl"), "pickled");
+  EXPECT_EQ(entries.at("archive/data/0"), std::string(1000, 'w'));
+  std::string zip = stored_zip(kEntries);
+  zip[zip.find("wwww") + 500] ^= 0x10;
+  EXPECT_THROW(zip_entries(zip), std::runtime_error);
+}
+
 }  // namespace
 }  // namespace vaegail
