@@ -77,5 +77,47 @@ passing=$root/experts/walker/eval.json
 expect_error "no expert named by --only passes" "$tmp/failing.h5" -- demos collect --experts-dir "$root/experts/walker" \
   --only speed-1_logstd-1_seed0 --passing "$passing" --out "$tmp/failing.h5"
 
+# ---- a body of one's own, end to end (docs/own_body.md at tiny scale) ------------------
+# The demonstration file alone rebuilds the body: the later stages run from another directory,
+# where the MJCF path the file names does not exist.
+body=$root/docs/own_body/hopper.xml
+tiny='{"lstm_hidden": 16, "latent_dim": 4, "action_hidden": [32, 32], "wavenet_channels": 8, "wavenet_layers": 2, "mixture_components": 2}'
+echo "$tiny" > "$tmp/tiny.json"
+mkdir -p "$tmp/elsewhere"
+run_in() { (cd "$1" && shift && "$v" "$@") > "$tmp/stdout" 2>&1 || fail "vaegail ${*:2}: $(tail -1 "$tmp/stdout")"; }
+run_in "$root" env rollout --task docs/own_body/hopper.xml --episodes 8 --seed 3 --out "$tmp/body.h5"
+run_in "$tmp/elsewhere" vae train --demos "$tmp/body.h5" --run-dir "$tmp/body_vae" --config "$tmp/tiny.json" --epochs 1
+run_in "$tmp/elsewhere" gail train --demos "$tmp/body.h5" --vae "$tmp/body_vae/checkpoints/latest.pt" \
+  --run-dir "$tmp/body_gail" --iterations 1 --envs 4
+run_in "$tmp/elsewhere" eval body --demos "$tmp/body.h5" --vae "$tmp/body_vae/checkpoints/latest.pt" \
+  --gail "$tmp/body_gail" --per-expert 3 --out-dir "$tmp/body_eval"
+grep -q '^| diverse_gail | 3 |' "$tmp/body_eval/summary.md" && grep -q 'error_torso_height' "$tmp/body_eval/imitation.csv" ||
+  fail "eval body: no diverse_gail row or torso_height error in $tmp/body_eval"
+sed 's/data="0.35"/data="0.3"/' "$body" > "$tmp/other_body.xml"
+expect_error "body.h5: recorded on body docs/own_body/hopper.xml (sha256" "$tmp/g" -- gail train --demos "$tmp/body.h5" \
+  --vae "$tmp/body_vae/checkpoints/latest.pt" --run-dir "$tmp/g" --iterations 1 --task "$tmp/other_body.xml"
+expect_error "not on --task walker (a built-in task)" "$tmp/g" -- gail train --demos "$tmp/body.h5" \
+  --vae "$tmp/body_vae/checkpoints/latest.pt" --run-dir "$tmp/g" --iterations 1 --task walker
+expect_error "cannot load MJCF model" "$tmp/b.h5" -- env rollout --task "$tmp/missing.xml" --out "$tmp/b.h5"
+
+# ---- import and export ----------------------------------------------------------------
+run_in "$tmp" data export "$tmp/body.h5" --minari "$tmp/body_minari"
+run_in "$tmp" data import "$tmp/body_minari" --out "$tmp/body_back.h5"
+grep -q "body stored in the file" "$tmp/stdout" || fail "data import of an exported directory lost the body"
+expect_error "body_minari: exists (pass --force" "" -- data export "$tmp/body.h5" --minari "$tmp/body_minari"
+expect_error "nothing: neither a Minari dataset directory nor an imitation .npz" "$tmp/i.h5" -- \
+  data import "$tmp/nothing" --out "$tmp/i.h5"
+fixtures=$root/src/data/testdata/write_foreign_demos.py
+if /usr/bin/python3 -c 'import h5py, numpy' 2> /dev/null; then
+  /usr/bin/python3 "$fixtures" check_minari "$tmp/body_minari" > /dev/null || fail "exported directory: not Minari's layout"
+  /usr/bin/python3 "$fixtures" npz "$tmp/trajectories.npz" && /usr/bin/python3 "$fixtures" minari "$tmp/minari"
+  run_in "$tmp" data import "$tmp/trajectories.npz" --out "$tmp/npz.h5"
+  run_in "$tmp" data import "$tmp/minari" --out "$tmp/minari.h5"
+  expect_error "observations/actions of 2/1 components, task '$body' has 10/2" "$tmp/i.h5" -- \
+    data import "$tmp/trajectories.npz" --out "$tmp/i.h5" --task "$body"
+  expect_error "npz.h5: recorded on 'imitation', which is neither built in nor stored in the file" "$tmp/g" -- \
+    gail train --mode plain --demos "$tmp/npz.h5" --run-dir "$tmp/g" --iterations 1
+fi
+
 echo "$helped commands answered --help; $failures failure(s)"
 [ "$failures" -eq 0 ]

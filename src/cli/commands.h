@@ -7,7 +7,7 @@
 namespace vaegail::cli {
 
 void add_env_commands(CLI::App& app);
-void add_data_commands(CLI::App& app);
+void add_data_commands(CLI::App& app);  // data info/import/export
 void add_bench_commands(CLI::App& app);
 void add_expert_commands(CLI::App& app);  // experts train/eval, demos collect
 void add_quickstart_command(CLI::App& app);
@@ -16,6 +16,7 @@ void add_plot_commands(CLI::App& app);  // plot curves/tsne/histogram
 void add_gail_commands(CLI::App& app);  // gail train, bc train
 void add_eval_commands(CLI::App& app);  // eval walker, eval arm
 void add_eval_arm(CLI::App& eval);
+void add_eval_body(CLI::App& eval);
 
 struct TaskOptions;
 // Flags every command that simulates shares: which task, and how episodes end.

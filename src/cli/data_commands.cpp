@@ -1,9 +1,12 @@
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/task_options.h"
 #include "data/demo_stats.h"
+#include "data/foreign_demos.h"
 #include "plot/charts.h"
 
 namespace vaegail::cli {
@@ -70,10 +73,81 @@ void run_info(const InfoOptions& o) {
   std::printf("wrote %s\n", o.histogram.c_str());
 }
 
+struct ImportOptions {
+  std::string source, out, task;
+  bool force = false;
+};
+
+void write_demo_set(const DemoSet& set, const std::string& path) {
+  DemoWriter writer(path, set.header);
+  for (const auto& e : set.episodes) writer.append(e);
+  writer.commit();
+}
+
+std::int64_t total_steps(const DemoSet& set) {
+  std::int64_t steps = 0;
+  for (const auto& e : set.episodes) steps += e.length();
+  return steps;
+}
+
+void run_import(const ImportOptions& o) {
+  if (std::filesystem::exists(o.out) && !o.force) throw std::runtime_error(o.out + ": exists (pass --force to replace it)");
+  const bool npz = o.source.size() > 4 && o.source.compare(o.source.size() - 4, 4, ".npz") == 0;
+  if (!npz && !std::filesystem::is_directory(o.source))
+    throw std::invalid_argument(o.source + ": neither a Minari dataset directory nor an imitation .npz file");
+  DemoSet set = npz ? import_imitation_npz(o.source) : import_minari(o.source);
+  if (!o.task.empty()) {
+    TaskOptions task;
+    task.task = o.task;
+    adopt_env(set, *task.make());
+  }
+  write_demo_set(set, o.out);
+  std::printf("wrote %s: %zu episodes, %lld steps, observation %d, action %d, task '%s'%s\n", o.out.c_str(),
+              set.episodes.size(), static_cast<long long>(total_steps(set)), set.header.obs_dim(),
+              set.header.act_dim(), set.header.env_id.c_str(),
+              set.header.body_mjcf.empty() ? "" : " (body stored in the file)");
+}
+
+struct ExportOptions {
+  std::string file, minari_dir, dataset_id;
+  bool force = false;
+};
+
+void run_export(const ExportOptions& o) {
+  const DemoSet set = read_demos(o.file);
+  const std::string id = o.dataset_id.empty() ? "vaegail/" + std::filesystem::path(o.file).stem().string() + "-v0"
+                                              : o.dataset_id;
+  export_minari(set, o.minari_dir, id, o.force);
+  std::printf("wrote %s/{main_data.hdf5, metadata.json}: dataset_id %s, %zu episodes, %lld steps\n",
+              o.minari_dir.c_str(), id.c_str(), set.episodes.size(), static_cast<long long>(total_steps(set)));
+}
+
+void add_import_export(CLI::App& data) {
+  auto in = std::make_shared<ImportOptions>();
+  CLI::App* import = data.add_subcommand(
+      "import", "demonstrations from a Minari dataset directory (metadata.json + main_data.hdf5) or an imitation "
+                "library .npz into a demonstration file");
+  import->add_option("source", in->source, "Minari dataset directory, or imitation trajectories (.npz)")->required();
+  import->add_option("--out", in->out, "demonstration file to write (.h5)")->required();
+  import->add_option("--task", in->task,
+                     "the task or MJCF body the demonstrations were recorded on: names their components and stores "
+                     "the body in the file, so later stages rebuild its environment (dimensions are checked)");
+  import->add_flag("--force", in->force, "replace an existing output file");
+  import->callback([in] { run_import(*in); });
+
+  auto out = std::make_shared<ExportOptions>();
+  CLI::App* exp = data.add_subcommand("export", "write a demonstration file as a Minari dataset directory");
+  exp->add_option("file", out->file, "demonstration file (.h5)")->required();
+  exp->add_option("--minari", out->minari_dir, "dataset directory to write (appears whole or not at all)")->required();
+  exp->add_option("--dataset-id", out->dataset_id, "Minari's dataset_id (default: vaegail/FILE_STEM-v0)");
+  exp->add_flag("--force", out->force, "replace an existing directory");
+  exp->callback([out] { run_export(*out); });
+}
+
 }  // namespace
 
 void add_data_commands(CLI::App& app) {
-  CLI::App* data = app.add_subcommand("data", "inspect demonstration files");
+  CLI::App* data = app.add_subcommand("data", "inspect, import and export demonstration files");
   data->require_subcommand(1);
   auto options = std::make_shared<InfoOptions>();
   CLI::App* info = data->add_subcommand("info", "episodes, lengths, counts per context and feature statistics");
@@ -84,6 +158,7 @@ void add_data_commands(CLI::App& app) {
   info->add_option("--feature", options->feature, "feature whose per-episode mean is counted")->capture_default_str();
   info->add_option("--bins", options->bins, "equal-width bins")->check(CLI::Range(1, 10000))->capture_default_str();
   info->callback([options] { run_info(*options); });
+  add_import_export(*data);
 }
 
 }  // namespace vaegail::cli

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cli/commands.h"
+#include "cli/eval_policies.h"
 #include "cli/task_options.h"
 #include "eval/walker_eval.h"
 #include "gail/behavior_cloning.h"
@@ -48,6 +49,24 @@ void save_histogram(const std::string& path, const plot::Labels& labels,
   std::printf("\n%s\n%s", labels.title.c_str(), plot::histogram_table(edges, drawn).c_str());
 }
 
+}  // namespace
+
+std::vector<eval::NamedPolicy> load_policies(const vae::TrajectoryVae& model, const Env& env, const PolicyRuns& runs,
+                                             torch::Device device) {
+  std::vector<eval::NamedPolicy> policies{{"vae", vae::vae_mean_policy(model, device)}};
+  if (!runs.gail.empty())
+    policies.push_back({"diverse_gail", agent_mean_policy(load_gail_agent(runs.gail, env.obs_dim(), env.act_dim(),
+                                                                          model, device))});
+  if (!runs.plain.empty())
+    policies.push_back({"plain_gail", agent_mean_policy(load_gail_agent(runs.plain, env.obs_dim(), env.act_dim(),
+                                                                        vae::TrajectoryVae(nullptr), device))});
+  if (!runs.bc.empty())
+    policies.push_back({"bc", agent_mean_policy(load_bc_agent(runs.bc, env.obs_dim(), env.act_dim(), device))});
+  return policies;
+}
+
+namespace {
+
 void run_eval_walker(const EvalWalkerFlags& f) {
   torch::NoGradGuard no_grad;
   const auto device = parse_device(f.device);
@@ -57,15 +76,7 @@ void run_eval_walker(const EvalWalkerFlags& f) {
   model->eval();
   const auto env = demo_env(demos, model);
 
-  std::vector<eval::NamedPolicy> policies{{"vae", vae::vae_mean_policy(model, device)}};
-  if (!f.gail.empty())
-    policies.push_back({"diverse_gail", agent_mean_policy(load_gail_agent(f.gail, env->obs_dim(), env->act_dim(),
-                                                                          model, device))});
-  if (!f.plain.empty())
-    policies.push_back({"plain_gail", agent_mean_policy(load_gail_agent(f.plain, env->obs_dim(), env->act_dim(),
-                                                                        vae::TrajectoryVae(nullptr), device))});
-  if (!f.bc.empty())
-    policies.push_back({"bc", agent_mean_policy(load_bc_agent(f.bc, env->obs_dim(), env->act_dim(), device))});
+  const auto policies = load_policies(model, *env, {f.gail, f.plain, f.bc}, device);
 
   const auto episodes = eval::episodes_per_expert(demos, f.per_expert);
   const auto z = vae::encode_episodes(model, demos, episodes);
@@ -132,6 +143,7 @@ void add_eval_commands(CLI::App& app) {
   eval->require_subcommand(1);
   add_eval_walker(*eval);
   add_eval_arm(*eval);
+  add_eval_body(*eval);
 }
 
 }  // namespace vaegail::cli

@@ -23,7 +23,7 @@ namespace {
 
 // ---- gail train -----------------------------------------------------------------------
 struct GailFlags {
-  std::string mode = "diverse", demos, vae, run_dir;
+  std::string mode = "diverse", demos, vae, run_dir, task;
   GailOptions options;
 };
 
@@ -55,6 +55,7 @@ void add_mode_options(CLI::App& c, GailFlags& f) {
 void run_gail(GailFlags f) {
   const vae::TrajectoryVae model = mode_vae(f);
   const DemoSet demos = read_demos(f.demos);
+  check_demo_task(demos, f.task);
   const auto env = demo_env(demos);
   GailTrainer trainer(demos, model, *env, f.options, f.run_dir);
   if (trainer.iteration() > 0) std::printf("resuming %s after iteration %d\n", f.run_dir.c_str(), trainer.iteration());
@@ -82,6 +83,7 @@ void add_gail_train(CLI::App& gail) {
   add_mode_options(*c, *f);
   c->add_option("--demos", f->demos, "demonstration file (.h5)")->required();
   c->add_option("--run-dir", f->run_dir, "config.json, metrics.csv, checkpoints/latest.pt")->required();
+  add_demo_task_option(*c, f->task);
   c->add_option("--iterations", o.iterations, "train until this many iterations in total (Table 3: 30000)")
       ->check(CLI::Range(1, 1 << 30))->capture_default_str();
   c->add_option("--minutes", o.minutes, "stop after this many minutes of this call (0: no limit)")

@@ -5,7 +5,14 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "util/atomic_file.h"
+#include "util/sha256.h"
+
 namespace vaegail::cli {
+
+namespace {
+bool ends_with_xml(const std::string& s) { return s.size() >= 4 && s.compare(s.size() - 4, 4, ".xml") == 0; }
+}  // namespace
 
 EnvRequest TaskOptions::request() const {
   EnvRequest r;
@@ -21,8 +28,9 @@ void add_task_options(CLI::App& command, TaskOptions& o) {
       ->capture_default_str();
   command.add_option("--episode-length", o.episode_length, "control steps per episode (0: the task's default)")
       ->check(CLI::Range(0, 1 << 30));
-  command.add_option("--frame-skip", o.frame_skip, "MJCF files: physics steps per control step")
-      ->check(CLI::Range(1, 1 << 30))->capture_default_str();
+  command.add_option("--frame-skip", o.frame_skip,
+                     "MJCF files: physics steps per control step (0: the MJCF's vaegail_frame_skip, else 1)")
+      ->check(CLI::Range(0, 1 << 30))->capture_default_str();
   command.add_flag("--no-fall-termination", o.keep_going_after_fall,
                    "do not end episodes when the body falls");
 }
@@ -52,10 +60,39 @@ CLI::Option* add_refine_options(CLI::App& command, vae::RefineOptions& refine, c
 }
 
 EnvRequest demo_env_request(const DemoSet& demos) {
+  const DemoHeader& h = demos.header;
   EnvRequest request;
-  request.task = demos.header.env_id;
+  request.task = h.env_id;
   for (const auto& e : demos.episodes) request.episode_length = std::max(request.episode_length, e.length());
+  const auto& builtin = builtin_tasks();
+  const bool by_name = std::find(builtin.begin(), builtin.end(), h.env_id) != builtin.end();
+  if (h.body_mjcf.empty() && !by_name && !ends_with_xml(h.env_id))
+    throw std::invalid_argument(demos.path + ": recorded on '" + h.env_id +
+                                "', which is neither built in nor stored in the file (give it a body: "
+                                "vaegail data import FILE --task BODY.xml --out NEW.h5)");
+  request.mjcf_text = h.body_mjcf;
+  request.context_names = h.context_names;
+  request.control_timestep = h.control_timestep;
   return request;
+}
+
+void check_demo_task(const DemoSet& demos, const std::string& task) {
+  const DemoHeader& h = demos.header;
+  if (task.empty() || (h.body_mjcf.empty() && task == h.env_id)) return;
+  if (h.body_mjcf.empty())
+    throw std::invalid_argument(demos.path + ": recorded on task '" + h.env_id + "', not on --task " + task);
+  const std::string stored = sha256_hex(h.body_mjcf);
+  const std::string given = ends_with_xml(task) ? sha256_hex(read_file(task)) : "";
+  if (given != stored)
+    throw std::invalid_argument(demos.path + ": recorded on body " + h.env_id + " (sha256 " + stored.substr(0, 12) +
+                                "), not on --task " + task +
+                                (given.empty() ? " (a built-in task)" : " (sha256 " + given.substr(0, 12) + ")"));
+}
+
+void add_demo_task_option(CLI::App& command, std::string& task) {
+  command.add_option("--task", task,
+                     "check that the demonstrations were recorded on this task or MJCF file (the file's own body "
+                     "is used either way)");
 }
 
 std::unique_ptr<Env> demo_env(const DemoSet& demos, const vae::TrajectoryVae& model) {

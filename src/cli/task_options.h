@@ -17,7 +17,7 @@ namespace vaegail::cli {
 struct TaskOptions {
   std::string task = "walker";
   int episode_length = 0;
-  int frame_skip = 1;
+  int frame_skip = 0;
   bool keep_going_after_fall = false;
 
   EnvRequest request() const;
@@ -38,10 +38,17 @@ CLI::Option* add_device_option(CLI::App& command, std::string& device,
 // --refine-lr; returns --refine-steps, for exclusions.
 CLI::Option* add_refine_options(CLI::App& command, vae::RefineOptions& refine, const std::string& whose);
 
-// The environment the demonstrations were recorded in, with episodes as long as the longest.
+// The environment the demonstrations were recorded in, with episodes as long as the longest: a
+// built-in task by name, or a user's body from the MJCF text the file stores (with the file's
+// control step and context names). Throws (one line) when the file names neither.
 EnvRequest demo_env_request(const DemoSet& demos);
 inline std::unique_ptr<Env> demo_env(const DemoSet& demos) { return make_env(demo_env_request(demos)); }
 // The same, checked against the VAE's state and action dimensions (one-line error otherwise).
 std::unique_ptr<Env> demo_env(const DemoSet& demos, const vae::TrajectoryVae& model);
+// Throws (one line) when `task` is given and is not what the demonstrations were recorded on:
+// another built-in task, or an MJCF file whose text differs from the stored body's (SHA-256).
+void check_demo_task(const DemoSet& demos, const std::string& task);
+// --task on commands that read demonstrations: checked by check_demo_task.
+void add_demo_task_option(CLI::App& command, std::string& task);
 
 }  // namespace vaegail::cli

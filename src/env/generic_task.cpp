@@ -36,7 +36,12 @@ std::string custom_text(const MujocoModel& model, const std::string& name) {
 MujocoEnvOptions base_options(const MujocoModel& model, const GenericTaskOptions& o) {
   MujocoEnvOptions base;
   base.id = model.source();
-  base.frame_skip = o.frame_skip > 0 ? o.frame_skip : custom_count(model, kPrefix + "frame_skip", 1);
+  base.frame_skip = o.frame_skip > 0            ? o.frame_skip
+                    : o.control_timestep > 0    ? static_cast<int>(std::lround(o.control_timestep / model.get()->opt.timestep))
+                                                : custom_count(model, kPrefix + "frame_skip", 1);
+  if (base.frame_skip < 1)
+    throw std::runtime_error(model.source() + ": a control step of " + std::to_string(o.control_timestep) +
+                             " s is shorter than the physics step");
   base.episode_length = o.episode_length > 0 ? o.episode_length : custom_count(model, kPrefix + "episode_length", 1000);
   return base;
 }

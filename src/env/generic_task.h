@@ -33,6 +33,7 @@ namespace vaegail {
 
 struct GenericTaskOptions {
   int frame_skip = 0;      // 0: the MJCF's vaegail_frame_skip, else 1
+  double control_timestep = 0;  // > 0 with frame_skip 0: the frame skip giving this step (a file's)
   int episode_length = 0;  // 0: the MJCF's vaegail_episode_length, else 1000
   bool terminate_on_fall = true;
   std::vector<std::string> context_names;  // appended to the MJCF's (names it has are skipped)

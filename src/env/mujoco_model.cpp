@@ -7,6 +7,15 @@
 
 namespace vaegail {
 
+namespace {
+// MuJoCo's message spans lines ("Error: ...\nObject name = ..."): keep the error one line.
+std::string one_line(std::string message) {
+  while (!message.empty() && message.back() == '\n') message.pop_back();
+  for (size_t at = 0; (at = message.find('\n', at)) != std::string::npos;) message.replace(at, 1, "; ");
+  return message;
+}
+}  // namespace
+
 std::shared_ptr<const MujocoModel> MujocoModel::from_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot load MJCF model: no such file or not readable");
@@ -15,7 +24,7 @@ std::shared_ptr<const MujocoModel> MujocoModel::from_file(const std::string& pat
   // Compiled from the file itself, so that includes and meshes resolve as MuJoCo resolves them.
   char error[1000] = "";
   mjModel* model = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
-  if (!model) throw std::runtime_error(path + ": cannot load MJCF model: " + error);
+  if (!model) throw std::runtime_error(path + ": cannot load MJCF model: " + one_line(error));
   return std::shared_ptr<const MujocoModel>(new MujocoModel(model, path, text.str()));
 }
 
@@ -30,7 +39,7 @@ std::shared_ptr<const MujocoModel> MujocoModel::from_xml(const std::string& name
   char error[1000] = "";
   mjModel* model = mj_loadXML(name.c_str(), vfs.get(), error, sizeof error);
   mj_deleteVFS(vfs.get());
-  if (!model) throw std::runtime_error(name + ": cannot load MJCF model: " + error);
+  if (!model) throw std::runtime_error(name + ": cannot load MJCF model: " + one_line(error));
   return std::shared_ptr<const MujocoModel>(new MujocoModel(model, name, xml));
 }
 

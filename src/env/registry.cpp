@@ -41,6 +41,7 @@ std::unique_ptr<Env> make_env(const EnvRequest& request) {
     o.episode_length = request.episode_length;
     o.terminate_on_fall = request.terminate_on_fall;
     o.context_names = request.context_names;
+    o.control_timestep = request.control_timestep;
     return std::make_unique<GenericTaskEnv>(request.mjcf_text.empty()
                                                 ? MujocoModel::from_file(request.task)
                                                 : MujocoModel::from_xml(request.task, request.mjcf_text),

@@ -18,6 +18,7 @@ struct EnvRequest {
   std::string mjcf_text;         // the body's MJCF (a demonstration file's): compiled from this
                                  // text, `task` naming it, instead of reading the file at `task`
   std::vector<std::string> context_names;  // beyond the MJCF's own
+  double control_timestep = 0;   // > 0 with frame_skip 0: the frame skip that gives this step
 };
 
 std::vector<std::string> builtin_tasks();
