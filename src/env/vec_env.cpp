@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "util/rng.h"
 
@@ -53,6 +54,21 @@ void VecEnv::step_one(int i, const float* action) {
 
 void VecEnv::step(const float* actions) {
   pool_.parallel_for(size(), [&](int i) { step_one(i, actions + static_cast<size_t>(i) * act_dim_); });
+}
+
+void VecEnv::for_each_block(const std::function<void(int first, int count)>& fn) {
+  const int blocks = pool_.size();
+  pool_.parallel_for(blocks, [&](int b) {
+    const int first = size() * b / blocks, end = size() * (b + 1) / blocks;
+    if (end > first) fn(first, end - first);
+  });
+}
+
+void VecEnv::step_block(int first, int count, const float* actions) {
+  if (first < 0 || count < 0 || first + count > size())
+    throw std::out_of_range("VecEnv::step_block: environments [" + std::to_string(first) + ", " +
+                            std::to_string(first + count) + ") of " + std::to_string(size()));
+  for (int i = first; i < first + count; ++i) step_one(i, actions + static_cast<size_t>(i - first) * act_dim_);
 }
 
 }  // namespace vaegail

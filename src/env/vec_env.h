@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -33,6 +34,13 @@ class VecEnv {
 
   void reset(const std::vector<std::uint64_t>& seeds);
   void step(const float* actions);
+
+  // The pool's contiguous blocks of environments, fn(first, count) for each, one block per
+  // thread: a caller that also computes per environment (a policy's forward pass) runs it beside
+  // the physics of its block, on every core, instead of serially before step().
+  void for_each_block(const std::function<void(int first, int count)>& fn);
+  // step() for environments [first, first + count) only; `actions` holds their rows.
+  void step_block(int first, int count, const float* actions);
 
   const std::vector<float>& observations() const { return obs_; }
   const std::vector<float>& final_observations() const { return final_obs_; }

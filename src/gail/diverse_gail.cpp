@@ -257,26 +257,32 @@ GailTrainer::GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env
   discriminator_->to(agent_->device());
   discriminator_trainer_ = std::make_unique<DiscriminatorTrainer>(discriminator_, options_.discriminator_learning_rate);
   reward_ = std::make_shared<GailReward>(discriminator_, options_.reward_clip);
+  TrpoOptions trpo_options;
+  trpo_options.max_kl = options_.max_kl;
+  trpo_options.critic_learning_rate = options_.critic_learning_rate;
+  trpo_ = std::make_unique<Trpo>(agent_->policy_ptr(), agent_->critic_ptr(), trpo_options);
   if (fs::exists(checkpoint_path())) load_checkpoint();
   truncate_metrics(metrics_path(), iteration_);
   log_ = std::make_unique<CsvLog>(metrics_path(), kGailMetricColumns);
 }
 
 void GailTrainer::save_checkpoint() const {
-  torch::serialize::OutputArchive root, agent, discriminator, optimizer;
+  torch::serialize::OutputArchive root, agent, discriminator, optimizer, critic_optimizer;
   agent_->save(agent);
   discriminator_->save(discriminator);
   discriminator_trainer_->optimizer().save(optimizer);
+  trpo_->critic_optimizer().save(critic_optimizer);
   root.write("agent", agent);
   root.write("discriminator", discriminator);
   root.write("discriminator_optimizer", optimizer);
+  root.write("critic_optimizer", critic_optimizer);
   root.write("iteration", torch::tensor(static_cast<int64_t>(iteration_)));
   root.write("seconds", torch::tensor(seconds_before_, torch::kFloat64));
   write_atomically(checkpoint_path(), [&](const std::string& tmp) { root.save_to(tmp); });
 }
 
 void GailTrainer::load_checkpoint() {
-  torch::serialize::InputArchive root, agent, discriminator, optimizer;
+  torch::serialize::InputArchive root, agent, discriminator, optimizer, critic_optimizer;
   root.load_from(checkpoint_path(), agent_->device());
   root.read("agent", agent);
   root.read("discriminator", discriminator);
@@ -284,6 +290,7 @@ void GailTrainer::load_checkpoint() {
   agent_->load(agent);
   discriminator_->load(discriminator);
   discriminator_trainer_->optimizer().load(optimizer);
+  if (root.try_read("critic_optimizer", critic_optimizer)) trpo_->critic_optimizer().load(critic_optimizer);
   torch::Tensor iteration, seconds;
   root.read("iteration", iteration);
   root.read("seconds", seconds);
@@ -315,12 +322,8 @@ GailMetrics GailTrainer::iterate() {
   const Rollout rollout = collector.collect(steps_per_env_);
   last_phases_.rollout = lap();
 
-  TrpoOptions trpo_options;
-  trpo_options.max_kl = options_.max_kl;
-  trpo_options.critic_learning_rate = options_.critic_learning_rate;
-  trpo_options.seed = stream_seed(options_.seed, iteration_, kTrpo);
-  Trpo trpo(agent_->policy_ptr(), agent_->critic_ptr(), trpo_options);
-  const TrpoStats trpo_stats = trpo.update(make_update_batch(rollout, options_.gamma, options_.lambda));
+  trpo_->reseed(stream_seed(options_.seed, iteration_, kTrpo));
+  const TrpoStats trpo_stats = trpo_->update(make_update_batch(rollout, options_.gamma, options_.lambda));
   last_phases_.policy_update = lap();
 
   // Each policy step against a step of the demonstration its episode imitated, same z.

@@ -21,7 +21,8 @@
 //                                    minutes, device, env_threads)
 //   run_dir/metrics.csv              one row per completed iteration (columns: kGailMetricColumns)
 //   run_dir/checkpoints/latest.pt    agent (policy incl. the frozen VAE, critic, normaliser),
-//                                    discriminator, its Adam state and the iteration count,
+//                                    discriminator, the Adam states of discriminator and critic,
+//                                    the iteration count,
 //                                    one file written atomically after every iteration
 //
 // Reproducibility: every random stream of iteration k (demonstration draws, z noise, the
@@ -30,7 +31,8 @@
 // what the checkpoint holds. So a run killed after iteration k and resumed equals the
 // uninterrupted run (same thread counts). The price: each iteration starts fresh episodes
 // (with the default steps_per_env an iteration is exactly one episode per environment
-// anyway), and the critic's Adam state restarts every iteration (rl's Trpo keeps it private).
+// anyway). The critic's Adam state carries over between iterations and is checkpointed; a
+// checkpoint written before it was kept resumes with a fresh one.
 #pragma once
 
 #include <cstdint>
@@ -47,6 +49,7 @@
 #include "gail/gail_demos.h"
 #include "gail/gail_reward.h"
 #include "rl/agent.h"
+#include "rl/trpo.h"
 #include "util/csv_log.h"
 #include "vae/imitation.h"
 #include "vae/trajectory_vae.h"
@@ -161,6 +164,7 @@ class GailTrainer {
   std::shared_ptr<Agent> agent_;
   std::shared_ptr<Discriminator> discriminator_;
   std::unique_ptr<DiscriminatorTrainer> discriminator_trainer_;
+  std::unique_ptr<Trpo> trpo_;
   std::shared_ptr<GailReward> reward_;
   std::unique_ptr<CsvLog> log_;
   int iteration_ = 0;

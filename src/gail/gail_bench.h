@@ -26,6 +26,7 @@ struct GailBenchResult {
   PhysicsBenchResult physics;          // same machine, same run
   double seconds_per_iteration() const { return phases.total() / iterations; }
   double env_steps_per_s() const { return steps_per_iteration / seconds_per_iteration(); }
+  double all_core_ratio() const { return env_steps_per_s() / physics.all_core_control_steps_per_s; }
 };
 
 // Trains in a temporary run directory that is removed afterwards; `vae` is needed in diverse mode.

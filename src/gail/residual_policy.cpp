@@ -24,7 +24,7 @@ ResidualPolicy::ResidualPolicy(vae::TrajectoryVae base, std::shared_ptr<const Ob
   log_std_ = register_parameter("log_std", torch::full({c.action_dim}, options.init_log_std));
 }
 
-torch::Tensor ResidualPolicy::base_mean(const torch::Tensor& input) {
+torch::Tensor ResidualPolicy::frozen_mean(const torch::Tensor& input) {
   torch::NoGradGuard no_grad;
   const int obs_dim = normalizer_->dim();
   const auto scale = torch::sqrt(normalizer_->var() + kNormalizerVarEpsilon);
@@ -33,7 +33,11 @@ torch::Tensor ResidualPolicy::base_mean(const torch::Tensor& input) {
 }
 
 DiagGaussian ResidualPolicy::distribution(const torch::Tensor& input) {
-  auto mean = residual_->forward(input) + base_mean(input);
+  return distribution_with(input, frozen_mean(input));
+}
+
+DiagGaussian ResidualPolicy::distribution_with(const torch::Tensor& input, const torch::Tensor& frozen) {
+  auto mean = residual_->forward(input) + frozen;
   return {mean, log_std_.expand_as(mean)};
 }
 

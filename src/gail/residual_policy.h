@@ -42,9 +42,9 @@ class ResidualPolicy : public StochasticPolicy {
   int input_dim() const override { return residual_->in_dim(); }
   int act_dim() const override { return residual_->out_dim(); }
   DiagGaussian distribution(const torch::Tensor& input) override;
-
   // μ_α(x, z) for input [B, input_dim], without gradient: [B, act_dim].
-  torch::Tensor base_mean(const torch::Tensor& input);
+  torch::Tensor frozen_mean(const torch::Tensor& input) override;
+  DiagGaussian distribution_with(const torch::Tensor& input, const torch::Tensor& frozen) override;
 
  private:
   vae::TrajectoryVae base_;

@@ -17,6 +17,12 @@ torch::Tensor copy_buffer(const std::vector<T>& buffer, torch::IntArrayRef shape
   return torch::from_blob(const_cast<T*>(buffer.data()), shape, buffer_dtype).to(torch::kFloat32, false, true);
 }
 
+// Rows [first, first + count) of a row-major [*, dim] buffer, as a CPU tensor of its own.
+torch::Tensor buffer_rows(const std::vector<float>& buffer, int first, int count, int dim) {
+  if (dim == 0) return torch::zeros({count, 0});
+  return torch::from_blob(const_cast<float*>(buffer.data()) + static_cast<size_t>(first) * dim, {count, dim}).clone();
+}
+
 }  // namespace
 
 RolloutCollector::RolloutCollector(VecEnv& envs, std::shared_ptr<Agent> agent, std::uint64_t seed,
@@ -74,38 +80,49 @@ Rollout RolloutCollector::collect(int steps_per_env) {
   if (steps_per_env < 1) throw std::invalid_argument("RolloutCollector::collect: steps_per_env must be positive");
   if (!started_) start();
   torch::NoGradGuard no_grad;
-  const int n = envs_.size();
+  const int n = envs_.size(), act_dim = envs_.act_dim();
+  const int64_t T = steps_per_env;
   const auto device = agent_->device();
   StochasticPolicy& policy = agent_->policy();
   Critic& critic = agent_->critic();
 
-  std::vector<torch::Tensor> observations, conditions, inputs, actions, log_probs, values, rewards, terminated,
-      truncated, final_values;
+  // Filled block by block on the pool's threads; each block writes only its own columns.
   Rollout out;
-  for (int t = 0; t < steps_per_env; ++t) {
-    const auto obs = current_observations(), cond = current_conditions();
-    const auto input = agent_->input(obs, cond);
-    const auto dist = policy.distribution(input);
-    const auto action = dist.sample(generator_);
-    const auto action_cpu = action.to(torch::kCPU).contiguous();
-    envs_.step(action_cpu.data_ptr<float>());
-
-    observations.push_back(obs.to(device));
-    conditions.push_back(cond.to(device));
-    inputs.push_back(input);
-    actions.push_back(action);
-    log_probs.push_back(dist.log_prob(action));
-    values.push_back(critic.forward(input));
-    rewards.push_back(copy_buffer(envs_.rewards(), {n}, torch::kFloat32));
-    terminated.push_back(copy_buffer(envs_.terminated(), {n}, torch::kUInt8));
-    truncated.push_back(copy_buffer(envs_.truncated(), {n}, torch::kUInt8));
-    auto final_value = torch::zeros({n}, device);
-    if (truncated.back().any().item<bool>()) {
-      // The finished episode's condition is still in `cond`: begin_episode below replaces it.
-      const auto final_obs = copy_buffer(envs_.final_observations(), {n, obs_dim_}, torch::kFloat32);
-      final_value = critic.forward(agent_->input(final_obs, cond));
-    }
-    final_values.push_back(final_value);
+  const auto cpu = torch::TensorOptions().dtype(torch::kFloat32);
+  auto observations = torch::empty({T, n, obs_dim_}, cpu), conditions = torch::empty({T, n, cond_dim_}, cpu);
+  auto inputs = torch::empty({T, n, agent_->obs_dim() + cond_dim_}, cpu), actions = torch::empty({T, n, act_dim}, cpu);
+  auto log_probs = torch::empty({T, n}, cpu), values = torch::empty({T, n}, cpu);
+  std::vector<float> rewards(static_cast<size_t>(T) * n), final_values(rewards.size(), 0.f);
+  std::vector<std::uint8_t> terminated(rewards.size()), truncated(rewards.size());
+  for (int64_t t = 0; t < T; ++t) {
+    // Drawn for every environment at once, in one stream: the same numbers whatever the blocks.
+    const auto noise = torch::randn({n, act_dim}, generator_);
+    envs_.for_each_block([&](int first, int count) {
+      torch::NoGradGuard block_no_grad;  // thread-local: the pool's threads need their own
+      const auto rows = [&](const torch::Tensor& x) { return x.select(0, t).narrow(0, first, count); };
+      const auto obs = buffer_rows(obs_, first, count, obs_dim_);
+      const auto cond = buffer_rows(conditions_, first, count, cond_dim_);
+      const auto input = agent_->input(obs, cond);
+      const auto dist = policy.distribution(input);
+      const auto action = dist.mean + torch::exp(dist.log_std) * noise.narrow(0, first, count).to(device);
+      rows(observations).copy_(obs);
+      rows(conditions).copy_(cond);
+      rows(inputs).copy_(input);
+      rows(actions).copy_(action);
+      rows(log_probs).copy_(dist.log_prob(action));
+      rows(values).copy_(critic.forward(input));
+      const auto action_cpu = action.to(torch::kCPU).contiguous();
+      envs_.step_block(first, count, action_cpu.data_ptr<float>());
+      for (int i = first; i < first + count; ++i) {
+        if (!envs_.truncated()[i]) continue;
+        // The finished episode's condition is still in `cond`: begin_episode replaces it later.
+        const auto final_obs = buffer_rows(envs_.final_observations(), i, 1, obs_dim_);
+        final_values[t * n + i] = critic.forward(agent_->input(final_obs, cond.narrow(0, i - first, 1))).item<float>();
+      }
+    });
+    std::copy(envs_.rewards().begin(), envs_.rewards().end(), rewards.begin() + t * n);
+    std::copy(envs_.terminated().begin(), envs_.terminated().end(), terminated.begin() + t * n);
+    std::copy(envs_.truncated().begin(), envs_.truncated().end(), truncated.begin() + t * n);
 
     for (int i = 0; i < n; ++i) {
       EpisodeRecord& episode = running_[i];
@@ -127,18 +144,18 @@ Rollout RolloutCollector::collect(int steps_per_env) {
     }
   }
 
-  out.observations = torch::stack(observations);
-  out.conditions = torch::stack(conditions);
-  out.inputs = torch::stack(inputs);
-  out.actions = torch::stack(actions);
-  out.log_probs = torch::stack(log_probs);
-  out.values = torch::stack(values);
-  out.env_rewards = torch::stack(rewards).to(device);
-  out.terminated = torch::stack(terminated).to(device);
-  out.truncated = torch::stack(truncated).to(device);
+  out.observations = observations.to(device);
+  out.conditions = conditions.to(device);
+  out.inputs = inputs.to(device);
+  out.actions = actions.to(device);
+  out.log_probs = log_probs.to(device);
+  out.values = values.to(device);
+  out.env_rewards = copy_buffer(rewards, {T, n}, torch::kFloat32).to(device);
+  out.terminated = copy_buffer(terminated, {T, n}, torch::kUInt8).to(device);
+  out.truncated = copy_buffer(truncated, {T, n}, torch::kUInt8).to(device);
   const auto last_value = critic.forward(agent_->input(current_observations(), current_conditions()));
   const auto following = torch::cat({out.values.slice(0, 1), last_value.unsqueeze(0)});
-  out.next_values = torch::where(out.truncated > 0, torch::stack(final_values), following) * (1 - out.terminated);
+  out.next_values = torch::where(out.truncated > 0, copy_buffer(final_values, {T, n}, torch::kFloat32).to(device), following) * (1 - out.terminated);
 
   out.rewards = reward_source_->rewards(out);
   if (out.rewards.sizes() != out.env_rewards.sizes())

@@ -35,6 +35,14 @@ class StochasticPolicy : public torch::nn::Module {
   virtual int act_dim() const = 0;
   // [B, input_dim] → distribution with [B, act_dim] parameters.
   virtual DiagGaussian distribution(const torch::Tensor& input) = 0;
+  // The part of the mean that no update moves, [B, act_dim], or an undefined tensor where there
+  // is none. The residual policy's frozen VAE mean is most of its forward cost: an update computes
+  // it once per batch and passes it to distribution_with() at every evaluation of the batch.
+  virtual torch::Tensor frozen_mean(const torch::Tensor& /*input*/) { return {}; }
+  // distribution(input), given frozen = frozen_mean(input) computed beforehand.
+  virtual DiagGaussian distribution_with(const torch::Tensor& input, const torch::Tensor& /*frozen*/) {
+    return distribution(input);
+  }
   // The parameters a policy update moves: those that require gradients (a residual policy's
   // frozen base does not).
   std::vector<torch::Tensor> trainable_parameters() const;

@@ -1,6 +1,7 @@
 #include "rl/trpo.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace vaegail {
 
@@ -29,17 +30,24 @@ void assign(const std::vector<torch::Tensor>& params, const torch::Tensor& flat)
   }
 }
 
-torch::Tensor surrogate(StochasticPolicy& policy, const UpdateBatch& batch, double entropy_coef) {
-  const auto dist = policy.distribution(batch.inputs);
+torch::Tensor surrogate(StochasticPolicy& policy, const UpdateBatch& batch, const torch::Tensor& frozen,
+                        double entropy_coef) {
+  const auto dist = policy.distribution_with(batch.inputs, frozen);
   const auto ratio = torch::exp(dist.log_prob(batch.actions) - batch.old_log_probs);
   return (ratio * batch.advantages).mean() + entropy_coef * dist.entropy().mean();
 }
 
+// Every stride-th row (all of an undefined tensor).
+torch::Tensor every(const torch::Tensor& rows, int stride) {
+  return rows.defined() ? rows.slice(0, 0, rows.size(0), stride) : rows;
+}
+
 }  // namespace
 
-LinearOperator fisher_vector_product(StochasticPolicy& policy, const torch::Tensor& inputs, double damping) {
+LinearOperator fisher_vector_product(StochasticPolicy& policy, const torch::Tensor& inputs,
+                                     const torch::Tensor& frozen, double damping) {
   const auto params = policy.trainable_parameters();
-  const auto dist = policy.distribution(inputs);
+  const auto dist = policy.distribution_with(inputs, frozen);
   const auto kl = kl_divergence(dist.detached(), dist).mean();
   // First backward pass once, with its graph kept; each product is a second pass through it.
   const auto kl_grad = flat_grad(kl, params, /*create_graph=*/true);
@@ -71,23 +79,30 @@ Trpo::Trpo(std::shared_ptr<StochasticPolicy> policy, std::shared_ptr<Critic> cri
       critic_(std::move(critic)),
       options_(options),
       critic_optimizer_(critic_->parameters(), torch::optim::AdamOptions(options.critic_learning_rate)),
-      generator_(at::detail::createCPUGenerator(options.seed)) {}
+      generator_(at::detail::createCPUGenerator(options.seed)) {
+  if (options_.fisher_stride < 1) throw std::invalid_argument("TRPO: fisher_stride must be positive");
+}
+
+void Trpo::reseed(std::uint64_t seed) { generator_ = at::detail::createCPUGenerator(seed); }
 
 TrpoStats Trpo::update(const UpdateBatch& batch) {
   TrpoStats stats;
-  step_policy(batch, stats);
+  const auto frozen = policy_->frozen_mean(batch.inputs);
+  step_policy(batch, frozen, stats);
   fit_critic(batch, stats);
   return stats;
 }
 
-void Trpo::step_policy(const UpdateBatch& batch, TrpoStats& stats) {
+void Trpo::step_policy(const UpdateBatch& batch, const torch::Tensor& frozen, TrpoStats& stats) {
   const auto params = policy_->trainable_parameters();
   const auto old_params = flatten(params).detach();
-  const auto old_dist = policy_->distribution(batch.inputs).detached();
-  const auto surrogate_before = surrogate(*policy_, batch, options_.entropy_coef);
+  const auto distribution = [&] { return policy_->distribution_with(batch.inputs, frozen); };
+  const auto old_dist = distribution().detached();
+  const auto surrogate_before = surrogate(*policy_, batch, frozen, options_.entropy_coef);
   const auto gradient = flat_grad(surrogate_before, params, /*create_graph=*/false);
 
-  const auto fisher = fisher_vector_product(*policy_, batch.inputs, options_.cg_damping);
+  const auto fisher = fisher_vector_product(*policy_, every(batch.inputs, options_.fisher_stride),
+                                            every(frozen, options_.fisher_stride), options_.cg_damping);
   const auto direction = conjugate_gradient(fisher, gradient, options_.cg_iterations);
   const double curvature = direction.dot(fisher(direction)).item<double>();
   if (std::isfinite(curvature) && curvature > 0) {
@@ -99,8 +114,8 @@ void Trpo::step_policy(const UpdateBatch& batch, TrpoStats& stats) {
     double fraction = 1.0;
     for (int k = 0; k < options_.line_search_steps; ++k, fraction *= options_.backtrack_ratio) {
       assign(params, old_params + fraction * full_step);
-      const double improvement = surrogate(*policy_, batch, options_.entropy_coef).item<double>() - before;
-      const double kl = kl_divergence(old_dist, policy_->distribution(batch.inputs)).mean().item<double>();
+      const double improvement = surrogate(*policy_, batch, frozen, options_.entropy_coef).item<double>() - before;
+      const double kl = kl_divergence(old_dist, distribution()).mean().item<double>();
       if (std::isfinite(improvement) && improvement > 0 && kl <= options_.max_kl) {
         stats.accepted = true;
         stats.surrogate_improvement = improvement;
@@ -112,9 +127,8 @@ void Trpo::step_policy(const UpdateBatch& batch, TrpoStats& stats) {
   }
   torch::NoGradGuard no_grad;
   if (!stats.accepted) assign(params, old_params);
-  stats.entropy = policy_->distribution(batch.inputs).entropy().mean().item<double>();
+  stats.entropy = distribution().entropy().mean().item<double>();
 }
-
 void Trpo::fit_critic(const UpdateBatch& batch, TrpoStats& stats) {
   const auto loss = [&](const UpdateBatch& b) { return (critic_->forward(b.inputs) - b.returns).pow(2).mean(); };
   {

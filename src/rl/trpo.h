@@ -19,6 +19,9 @@ struct TrpoOptions {
   double max_kl = 0.01;
   int cg_iterations = 10;
   double cg_damping = 0.1;  // F + damping·I: keeps CG well posed where the batch barely constrains F
+  // Fisher-vector products on every k-th sample of the batch (OpenAI baselines' TRPO uses 5): the
+  // curvature estimate needs far fewer samples than the gradient, and CG runs ten of them.
+  int fisher_stride = 5;
   int line_search_steps = 10;
   double backtrack_ratio = 0.5;
   double entropy_coef = 0.0;
@@ -39,13 +42,17 @@ struct TrpoStats {
   double value_loss_after = 0.0;
 };
 
+// One Trpo serves a whole training run: the critic's Adam state carries over between updates
+// (a checkpoint saves critic_optimizer()); reseed() gives each update its own shuffling stream.
 class Trpo {
  public:
   Trpo(std::shared_ptr<StochasticPolicy> policy, std::shared_ptr<Critic> critic, TrpoOptions options = {});
   TrpoStats update(const UpdateBatch& batch);
+  void reseed(std::uint64_t seed);
+  torch::optim::Adam& critic_optimizer() { return critic_optimizer_; }
 
  private:
-  void step_policy(const UpdateBatch& batch, TrpoStats& stats);
+  void step_policy(const UpdateBatch& batch, const torch::Tensor& frozen, TrpoStats& stats);
   void fit_critic(const UpdateBatch& batch, TrpoStats& stats);
 
   std::shared_ptr<StochasticPolicy> policy_;
@@ -60,8 +67,10 @@ using LinearOperator = std::function<torch::Tensor(const torch::Tensor&)>;
 
 // v ↦ (F + damping·I)·v, F the Fisher matrix of the policy's trainable parameters at their
 // current values on `inputs`: the Hessian of the mean KL(π_current ‖ π_θ), by double backprop.
+// `frozen` is policy.frozen_mean(inputs) (undefined where the policy has none).
 // The operator is only valid while the parameters keep their current values.
-LinearOperator fisher_vector_product(StochasticPolicy& policy, const torch::Tensor& inputs, double damping);
+LinearOperator fisher_vector_product(StochasticPolicy& policy, const torch::Tensor& inputs,
+                                     const torch::Tensor& frozen, double damping);
 
 // Solves A·x = b for symmetric positive definite A, from x = 0, in at most `iterations` steps
 // (earlier once the squared residual falls below residual_tol).

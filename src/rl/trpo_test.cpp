@@ -53,7 +53,7 @@ TEST(Trpo, FisherVectorProductEqualsTheExplicitFisherTimesV) {
   const auto inputs = torch::randn({6, 3}, torch::kFloat64);
   const auto fisher = explicit_fisher(*policy, inputs);
   const double damping = 0.1;
-  const auto fvp = fisher_vector_product(*policy, inputs, damping);
+  const auto fvp = fisher_vector_product(*policy, inputs, torch::Tensor(), damping);
   for (int trial = 0; trial < 3; ++trial) {
     const auto v = torch::randn({fisher.size(0)}, torch::kFloat64);
     const auto expected = fisher.mv(v) + damping * v;
