@@ -49,6 +49,9 @@ void add_mode_options(CLI::App& c, GailFlags& f) {
       ->check(CLI::Range(1, 1 << 16))->capture_default_str();
   c.add_option("--env-threads", f.options.env_threads, "threads stepping them")
       ->check(CLI::Range(1, 256))->capture_default_str();
+  c.add_option("--disc-minibatches", f.options.discriminator_minibatches,
+               "each discriminator step on 1/N of the iteration's samples (1: all of them)")
+      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   add_device_option(c, f.options.device);
 }
 

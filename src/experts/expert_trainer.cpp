@@ -13,6 +13,7 @@
 #include "util/atomic_file.h"
 #include "util/csv_log.h"
 #include "util/json_file.h"
+#include "util/malloc_tuning.h"
 #include "util/rng.h"
 
 namespace vaegail {
@@ -128,6 +129,7 @@ std::int64_t expert_steps(const std::string& run_dir) { return read_state(run_di
 void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, const std::string& run_dir,
                   const std::function<void(std::int64_t)>& progress) {
   auto prototype = make_expert_env(spec, options.posture_cost);  // checks the spec before touching run_dir
+  retain_freed_memory();  // the rollout buffers and minibatch activations come back every iteration
   fs::create_directories(run_dir);
   const std::string spec_path = run_dir + "/spec.json";
   if (fs::exists(spec_path)) {

@@ -1,5 +1,6 @@
 #include "gail/discriminator.h"
 
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -92,17 +93,27 @@ DiscriminatorTrainer::DiscriminatorTrainer(std::shared_ptr<Discriminator> discri
       optimizer_(discriminator_->parameters(), torch::optim::AdamOptions(learning_rate)) {}
 
 DiscriminatorStats DiscriminatorTrainer::train(const DiscriminatorData& demos, const DiscriminatorData& policy,
-                                               int steps) {
-  DiscriminatorStats before;
+                                               int steps, int minibatches, at::Generator& generator) {
+  if (minibatches < 1) throw std::invalid_argument("DiscriminatorTrainer: minibatches must be positive");
+  if (demos.size() != policy.size())
+    throw std::invalid_argument("DiscriminatorTrainer: one demonstration sample per policy sample");
+  const DiscriminatorStats before = evaluate_discriminator(*discriminator_, demos, policy);
+  const int64_t n = policy.size(), batch = std::max<int64_t>(n / minibatches, 1);
+  const auto order = minibatches > 1 ? torch::randperm(n, generator, torch::kLong).to(policy.observations.device())
+                                     : torch::Tensor();
+  const auto take = [&](const DiscriminatorData& d, const torch::Tensor& rows) {
+    return rows.defined() ? DiscriminatorData{d.observations.index_select(0, rows), d.actions.index_select(0, rows),
+                                              d.z.index_select(0, rows)}
+                          : d;
+  };
   for (int step = 0; step < steps; ++step) {
-    const auto demo_logits = discriminator_->forward(demos), policy_logits = discriminator_->forward(policy);
-    const auto loss = bce(demo_logits, policy_logits);
-    if (step == 0) before = stats_of(loss.detach(), demo_logits.detach(), policy_logits.detach());
+    const auto rows = order.defined() ? order.narrow(0, (step % minibatches) * batch, batch) : torch::Tensor();
+    const auto loss = bce(discriminator_->forward(take(demos, rows)), discriminator_->forward(take(policy, rows)));
     optimizer_.zero_grad();
     loss.backward();
     optimizer_.step();
   }
-  return steps > 0 ? before : evaluate_discriminator(*discriminator_, demos, policy);
+  return before;
 }
 
 }  // namespace vaegail

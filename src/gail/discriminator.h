@@ -78,9 +78,14 @@ class DiscriminatorTrainer {
  public:
   DiscriminatorTrainer(std::shared_ptr<Discriminator> discriminator, double learning_rate = 1e-4);
 
-  // `steps` full-batch Adam steps (Table 3: 10 per iteration). The stats are those of the
-  // discriminator as it was before the first step: how well it told this fresh data apart.
-  DiscriminatorStats train(const DiscriminatorData& demos, const DiscriminatorData& policy, int steps);
+  // `steps` Adam steps (Table 3: 10 per iteration), each on 1/`minibatches` of both sides'
+  // samples, taken in turn from one shuffle drawn from `generator` (minibatches 1: every step on
+  // the whole batch). The paper gives the step count, not the batch: steps = minibatches is one
+  // pass over the iteration's data, as OpenAI baselines' GAIL takes it, at a tenth of the
+  // full-batch cost. The stats are those of the discriminator as it was before the first step,
+  // on all the samples: how well it told this fresh data apart.
+  DiscriminatorStats train(const DiscriminatorData& demos, const DiscriminatorData& policy, int steps,
+                           int minibatches, at::Generator& generator);
 
   torch::optim::Adam& optimizer() { return optimizer_; }
 

@@ -22,6 +22,17 @@ DiscriminatorData gaussian(int64_t n, const torch::Tensor& mean, const torch::Te
   return {torch::randn({n, kObs}) + mean.slice(-1, 0, kObs), torch::randn({n, kAct}) + mean.slice(-1, kObs), z};
 }
 
+// Full-batch training, the shuffle's generator unused.
+DiscriminatorStats train_full_batch(DiscriminatorTrainer& trainer, const DiscriminatorData& demos,
+                                    const DiscriminatorData& policy, int steps) {
+  auto unused = at::detail::createCPUGenerator(0);
+  return trainer.train(demos, policy, steps, 1, unused);
+}
+
+DiscriminatorData rows_of(const DiscriminatorData& d, const torch::Tensor& rows) {
+  return {d.observations.index_select(0, rows), d.actions.index_select(0, rows), d.z.index_select(0, rows)};
+}
+
 torch::Tensor no_z(int64_t n) { return torch::zeros({n, 0}); }
 
 class DiscriminatorTest : public ::testing::Test {
@@ -37,7 +48,7 @@ TEST_F(DiscriminatorTest, SeparatesTwoGaussiansWithinAFewHundredSteps) {
   d->fit_normalization(demos.observations, demos.actions);
   DiscriminatorTrainer trainer(d, 1e-3);
   const double loss_before = evaluate_discriminator(*d, demos, policy).loss;
-  trainer.train(demos, policy, 200);
+  train_full_batch(trainer, demos, policy, 200);
   const auto fresh = evaluate_discriminator(*d, gaussian(2000, up, no_z(2000)), gaussian(2000, down, no_z(2000)));
   EXPECT_GT(fresh.demo_accuracy, 0.95);
   EXPECT_GT(fresh.policy_accuracy, 0.95);
@@ -49,10 +60,31 @@ TEST_F(DiscriminatorTest, TrainReportsTheStateBeforeItsSteps) {
   auto d = std::make_shared<Discriminator>(options(0));
   const auto demos = gaussian(64, torch::ones({5}), no_z(64)), policy = gaussian(64, -torch::ones({5}), no_z(64));
   const auto expected = evaluate_discriminator(*d, demos, policy);
-  const auto reported = DiscriminatorTrainer(d, 1e-3).train(demos, policy, 3);
+  DiscriminatorTrainer trainer(d, 1e-3);
+  const auto reported = train_full_batch(trainer, demos, policy, 3);
   EXPECT_NEAR(reported.loss, expected.loss, 1e-6);
   EXPECT_DOUBLE_EQ(reported.demo_accuracy, expected.demo_accuracy);
   EXPECT_NE(evaluate_discriminator(*d, demos, policy).loss, expected.loss);
+}
+
+TEST_F(DiscriminatorTest, AMinibatchStepIsAFullBatchStepOnItsShareOfTheShuffle) {
+  // Step 2 of 4 minibatches of 64 samples: rows 16..31 of randperm(64) from the same seed.
+  const auto demos = gaussian(64, torch::ones({5}), no_z(64)), policy = gaussian(64, -torch::ones({5}), no_z(64));
+  auto minibatched = std::make_shared<Discriminator>(options(0)), reference = std::make_shared<Discriminator>(options(0));
+  torch::NoGradGuard no_grad;
+  for (size_t i = 0; i < reference->parameters().size(); ++i)
+    reference->parameters()[i].copy_(minibatched->parameters()[i]);
+  auto generator = at::detail::createCPUGenerator(11), same = at::detail::createCPUGenerator(11);
+  const auto rows = torch::randperm(64, same, torch::kLong);
+  {
+    torch::AutoGradMode grad(true);
+    DiscriminatorTrainer a(minibatched, 1e-2), b(reference, 1e-2);
+    a.train(demos, policy, 2, 4, generator);
+    for (const auto& step_rows : {rows.slice(0, 0, 16), rows.slice(0, 16, 32)})
+      train_full_batch(b, rows_of(demos, step_rows), rows_of(policy, step_rows), 1);
+  }
+  for (size_t i = 0; i < reference->parameters().size(); ++i)
+    EXPECT_TRUE(torch::allclose(minibatched->parameters()[i], reference->parameters()[i], 1e-6, 1e-7)) << i;
 }
 
 // Demonstrations: z = +1 ↔ (x, a) around +1, z = -1 ↔ around -1. Policy: the same two
@@ -77,7 +109,8 @@ TEST_F(DiscriminatorTest, OnlyTheConditionalOneSeparatesSwappedConditions) {
   for (const int latent_dim : {1, 0}) {
     auto d = std::make_shared<Discriminator>(options(latent_dim));
     d->fit_normalization(train.demos.observations, train.demos.actions);
-    DiscriminatorTrainer(d, 1e-3).train(train.demos, train.policy, 300);
+    DiscriminatorTrainer trainer(d, 1e-3);
+    train_full_batch(trainer, train.demos, train.policy, 300);
     const auto s = evaluate_discriminator(*d, test.demos, test.policy);
     const double accuracy = (s.demo_accuracy + s.policy_accuracy) / 2;
     if (latent_dim == 1) {

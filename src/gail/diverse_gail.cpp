@@ -13,6 +13,7 @@
 #include "rl/update_batch.h"
 #include "util/atomic_file.h"
 #include "util/csv_log.h"
+#include "util/malloc_tuning.h"
 #include "util/rng.h"
 #include "vae/demo_dataset.h"
 
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Random streams of one iteration, each derived from (seed, iteration, stream).
-enum Stream : std::uint64_t { kInit = 0, kDemoDraws, kCollect, kTrpo, kDemoSteps };
+enum Stream : std::uint64_t { kInit = 0, kDemoDraws, kCollect, kTrpo, kDemoSteps, kDiscriminatorBatches };
 
 std::uint64_t stream_seed(std::uint64_t seed, int iteration, Stream stream) {
   return derive_seed(derive_seed(seed, static_cast<std::uint64_t>(iteration) + 1), stream);
@@ -139,6 +140,7 @@ void to_json(nlohmann::json& j, const GailOptions& o) {
        {"max_kl", o.max_kl},
        {"critic_learning_rate", o.critic_learning_rate},
        {"discriminator_steps", o.discriminator_steps},
+       {"discriminator_minibatches", o.discriminator_minibatches},
        {"discriminator_learning_rate", o.discriminator_learning_rate},
        {"reward_clip", o.reward_clip},
        {"seed", o.seed},
@@ -165,6 +167,7 @@ void from_json(const nlohmann::json& j, GailOptions& o) {
   o.max_kl = j.value("max_kl", d.max_kl);
   o.critic_learning_rate = j.value("critic_learning_rate", d.critic_learning_rate);
   o.discriminator_steps = j.value("discriminator_steps", d.discriminator_steps);
+  o.discriminator_minibatches = j.value("discriminator_minibatches", 1);  // older runs: the full batch
   o.discriminator_learning_rate = j.value("discriminator_learning_rate", d.discriminator_learning_rate);
   o.reward_clip = j.value("reward_clip", d.reward_clip);
   o.seed = j.value("seed", d.seed);
@@ -223,6 +226,7 @@ vae::LatentPolicy agent_mean_policy(std::shared_ptr<Agent> agent) {
 GailTrainer::GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env& prototype, GailOptions options,
                          std::string run_dir)
     : options_(std::move(options)), run_dir_(std::move(run_dir)) {
+  retain_freed_memory();  // a rollout's [T, N, ...] buffers and the update's activations, every iteration
   const bool diverse = options_.mode == GailMode::Diverse;
   if (demos.header.obs_dim() != prototype.obs_dim() || demos.header.act_dim() != prototype.act_dim())
     throw std::invalid_argument(demos.path + ": observations/actions have " +
@@ -238,8 +242,10 @@ GailTrainer::GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env
                                   std::to_string(c.state_dim) + "/" + std::to_string(c.action_dim));
     vae->eval();
   }
-  if (options_.num_envs < 1 || options_.iterations < 0 || options_.discriminator_steps < 0)
-    throw std::invalid_argument("GAIL: num_envs must be positive, iterations and discriminator_steps not negative");
+  if (options_.num_envs < 1 || options_.iterations < 0 || options_.discriminator_steps < 0 ||
+      options_.discriminator_minibatches < 1)
+    throw std::invalid_argument(
+        "GAIL: num_envs and discriminator_minibatches must be positive, iterations and discriminator_steps not negative");
 
   fs::create_directories(run_dir_ + "/checkpoints");
   check_or_write_config(run_dir_ + "/config.json", options_, kResumableKeys);
@@ -334,7 +340,9 @@ GailMetrics GailTrainer::iterate() {
   const auto [demo_obs, demo_act] = demos_.sample_steps(demo_of_step.reshape({-1}), generator);
   const auto device = agent_->device();
   const DiscriminatorData demo{demo_obs.to(device), demo_act.to(device), policy.z};
-  const DiscriminatorStats disc = discriminator_trainer_->train(demo, policy, options_.discriminator_steps);
+  auto shuffle = at::detail::createCPUGenerator(stream_seed(options_.seed, iteration_, kDiscriminatorBatches));
+  const DiscriminatorStats disc = discriminator_trainer_->train(demo, policy, options_.discriminator_steps,
+                                                                options_.discriminator_minibatches, shuffle);
   last_phases_.discriminator = lap();
 
   ++iteration_;

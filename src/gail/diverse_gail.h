@@ -9,7 +9,8 @@
 //      Algorithm 1's one trajectory per draw); rewards r = min(-log(1 - D(x, a | z_j)), clip);
 //   3. TRPO updates the policy (and fits the critic) on GAE advantages;
 //   4. the discriminator takes `discriminator_steps` Adam steps: every policy step
-//      (x̂_t, â_t, z_j) against a uniformly drawn step (x_t, a_t) of τ_j with the same z_j.
+//      (x̂_t, â_t, z_j) against a uniformly drawn step (x_t, a_t) of τ_j with the same z_j,
+//      each step on 1/`discriminator_minibatches` of these pairs (see DiscriminatorTrainer).
 // `plain` mode: no z anywhere; a GaussianPolicy from scratch and an unconditional D.
 //
 // The agent's observation normaliser is fixed to the training demonstrations' statistics
@@ -78,6 +79,9 @@ struct GailOptions {
   double max_kl = 0.01;
   double critic_learning_rate = 1e-3;
   int discriminator_steps = 10;                      // Table 3
+  // Not in the paper: the batch of each step. 10: one pass over the iteration's samples in
+  // 10 steps; 1: every step on all of them (what runs written before this option did).
+  int discriminator_minibatches = 10;
   double discriminator_learning_rate = 1e-4;         // Table 3
   double reward_clip = kDefaultGailRewardClip;
   std::uint64_t seed = 0;

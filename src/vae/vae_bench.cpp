@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cstdio>
 
-#include "vae/malloc_tuning.h"
+#include "util/malloc_tuning.h"
 #include "vae/trajectory_vae.h"
 
 namespace vaegail::vae {

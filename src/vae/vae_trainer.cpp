@@ -13,7 +13,7 @@
 #include "util/csv_log.h"
 #include "util/progress.h"
 #include "util/rng.h"
-#include "vae/malloc_tuning.h"
+#include "util/malloc_tuning.h"
 
 namespace vaegail::vae {
 

@@ -1,4 +1,4 @@
-#include "vae/malloc_tuning.h"
+#include "util/malloc_tuning.h"
 
 #include <cstdlib>  // defines __GLIBC__ on glibc
 
@@ -6,7 +6,7 @@
 #include <malloc.h>
 #endif
 
-namespace vaegail::vae {
+namespace vaegail {
 
 bool retain_freed_memory() {
 #if defined(__GLIBC__)
@@ -22,4 +22,4 @@ bool retain_freed_memory() {
 #endif
 }
 
-}  // namespace vaegail::vae
+}  // namespace vaegail

@@ -8,9 +8,9 @@
 // makes freed blocks reusable; the price is that RSS stays at its peak.
 #pragma once
 
-namespace vaegail::vae {
+namespace vaegail {
 
 // Idempotent and thread-safe; returns false if glibc refused a setting (other libcs: no-op).
 bool retain_freed_memory();
 
-}  // namespace vaegail::vae
+}  // namespace vaegail
