@@ -119,5 +119,20 @@ if /usr/bin/python3 -c 'import h5py, numpy' 2> /dev/null; then
     gail train --mode plain --demos "$tmp/npz.h5" --run-dir "$tmp/g" --iterations 1
 fi
 
+# ---- the humanoid's style-conditioned experts: train, eval, collect, styles -----------
+cat > "$tmp/humanoid.json" <<'JSON'
+{"grid": {"groups": [[0, 3]], "init_log_stds": [-1], "seeds": 1, "condition": "one_hot"},
+ "training": {"num_envs": 2, "steps_per_env": 32, "hidden": [16, 16], "epochs": 1, "minibatches": 1}}
+JSON
+expect_error "--config must give a 'grid' or 'grids'" "$tmp/h" -- experts train --task humanoid --out-dir "$tmp/h"
+"$v" experts train --task humanoid --config "$tmp/humanoid.json" --out-dir "$tmp/h" --steps 64 > /dev/null 2>&1 &&
+  [ -s "$tmp/h/humanoid_ctx0_3_logstd-1_seed0/agent.pt" ] || fail "experts train --task humanoid"
+"$v" experts eval --dir "$tmp/h" --episodes 2 > "$tmp/stdout" 2>&1 && grep -q " drunk " "$tmp/stdout" &&
+  grep -q "turn_rate" "$tmp/stdout" || fail "experts eval of a humanoid expert: $(cat "$tmp/stdout")"
+"$v" demos collect --task humanoid --experts-dir "$tmp/h" --episodes-per-expert 4 --out "$tmp/h.h5" > /dev/null 2>&1 &&
+  "$v" demos styles --demos "$tmp/h.h5" > "$tmp/stdout" 2>&1 && grep -q "of 2 held-out episodes named right" "$tmp/stdout" ||
+  fail "demos collect --task humanoid, demos styles: $(cat "$tmp/stdout")"
+expect_error "demos styles reads humanoid demonstrations" "" -- demos styles --demos "$tmp/one.h5"
+
 echo "$helped commands answered --help; $failures failure(s)"
 [ "$failures" -eq 0 ]

@@ -13,6 +13,9 @@
 #include "experts/demo_collection.h"
 #include "experts/expert_eval.h"
 #include "experts/expert_trainer.h"
+#include "experts/humanoid_gait.h"
+#include "env/humanoid.h"
+#include "data/demos.h"
 #include "util/atomic_file.h"
 #include "util/json_file.h"
 #include "util/progress.h"
@@ -235,9 +238,13 @@ void run_eval(const EvalFlags& f) {
   for (const auto& d : dirs) {
     results.push_back(evaluate_expert(load_expert(d), f.eval));
     nlohmann::json targets = nlohmann::json::array();
-    for (const auto& t : results.back().targets)
-      targets.push_back({{"target", t.target}, {"episodes", t.episodes}, {"mean_speed", t.mean_speed},
-                         {"speed_error", t.speed_error}, {"fall_rate", t.fall_rate}});
+    for (const auto& t : results.back().targets) {
+      nlohmann::json row = {{"target", t.target}, {"label", t.label}, {"target_speed", t.target_speed},
+                            {"episodes", t.episodes}, {"mean_speed", t.mean_speed},
+                            {"speed_error", t.speed_error}, {"fall_rate", t.fall_rate}};
+      for (size_t k = 0; k < t.signature.size(); ++k) row["signature"][kGaitStatistics[k]] = t.signature[k];
+      targets.push_back(row);
+    }
     report.push_back({{"id", results.back().id}, {"passes", results.back().passes()}, {"targets", targets}});
     progress.advance();
   }
@@ -305,6 +312,38 @@ void run_collect(CollectFlags f) {
   std::printf("wrote %s: %zu experts x %d episodes\n", f.out.c_str(), dirs.size(), episodes);
 }
 
+// The style classifier of the bar: gait signatures of a humanoid demonstration file,
+// fitted on half of each style's episodes, naming the other half; prints the confusion table.
+void run_styles(const std::string& path) {
+  const DemoSet demos = read_demos(path);
+  const auto env = demo_env(demos);
+  const auto* humanoid = dynamic_cast<const HumanoidEnv*>(env.get());
+  if (!humanoid) throw std::invalid_argument(path + ": demos styles reads humanoid demonstrations, not " + env->id());
+  std::vector<GaitSignature> rows;
+  std::vector<int> labels;
+  for (const auto& e : demos.episodes) {
+    rows.push_back(gait_signature(e, demos.header.feature_names, env->control_timestep()));
+    labels.push_back(static_cast<int>(e.context.at(0)));
+  }
+  const Confusion confusion = split_half_confusion(rows, labels);
+  const auto& names = humanoid->style_names();
+  std::printf("%-13s", "true \\ named");
+  for (const auto& [style, row] : confusion) std::printf(" %8s", names.at(style).c_str());
+  std::printf("\n");
+  int named_episodes = 0;
+  for (const auto& [style, row] : confusion) {
+    std::printf("%-13s", names.at(style).c_str());
+    for (const auto& [named, unused] : confusion) {
+      const auto count = row.find(named);
+      std::printf(" %8d", count == row.end() ? 0 : count->second);
+      named_episodes += count == row.end() ? 0 : count->second;
+    }
+    std::printf("\n");
+  }
+  std::printf("%.1f%% of %d held-out episodes named right (nearest centroid on %zu gait statistics; the bar: 90%%)\n",
+              100 * accuracy(confusion), named_episodes, kGaitStatistics.size());
+}
+
 }  // namespace
 
 void add_expert_commands(CLI::App& app) {
@@ -360,6 +399,11 @@ void add_expert_commands(CLI::App& app) {
   collect->add_option("--seed", c->collect.seed, "episode seeds")->capture_default_str();
   collect->add_flag("--force", c->force, "replace an existing output file");
   collect->callback([c] { run_collect(*c); });
+
+  auto styles_path = std::make_shared<std::string>();
+  CLI::App* styles = demos->add_subcommand("styles", "humanoid: are the styles distinct? a nearest-centroid classifier on per-episode gait statistics, fit on half of each style's episodes, names the other half");
+  styles->add_option("--demos", *styles_path, "humanoid demonstration file")->required()->check(CLI::ExistingFile);
+  styles->callback([styles_path] { run_styles(*styles_path); });
 }
 
 }  // namespace vaegail::cli

@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
+#include "env/humanoid.h"
 #include "experts/agent_policy.h"
+#include "experts/humanoid_gait.h"
 #include "util/rng.h"
 
 namespace vaegail {
@@ -14,8 +17,28 @@ bool ExpertEvaluation::passes(double max_error, double max_fall_rate) const {
   return !targets.empty();
 }
 
+namespace {
+// What a target asks of the episodes' speed, and under which recorded attribute the speed is.
+struct SpeedGoal {
+  std::string label;
+  double speed;
+  std::string attribute;
+};
+
+SpeedGoal speed_goal(const Env& env, double target) {
+  if (const auto* humanoid = dynamic_cast<const HumanoidEnv*>(&env)) {
+    const int style = static_cast<int>(target);
+    return {humanoid->style_names().at(style), humanoid->style_target(style)[kForwardSpeed], "mean_forward_speed"};
+  }
+  char label[32];
+  std::snprintf(label, sizeof label, "%.2f", target);
+  return {label, target, "mean_com_speed"};
+}
+}  // namespace
+
 ExpertEvaluation evaluate_expert(const LoadedExpert& expert, const ExpertEvalOptions& o) {
   const auto prototype = make_expert_env(expert.spec);
+  const bool humanoid = expert.spec.task == "humanoid";
   ExpertEvaluation result;
   result.id = expert.spec.id;
   for (double target : expert.spec.targets) {
@@ -30,14 +53,21 @@ ExpertEvaluation evaluate_expert(const LoadedExpert& expert, const ExpertEvalOpt
     request.num_threads = o.threads;
     const auto episodes = record_episodes(*prototype, request,
                                           agent_batch_policy(expert.agent, conditions, o.stochastic, o.seed));
+    const SpeedGoal goal = speed_goal(*prototype, target);
     TargetResult t;
     t.target = target;
+    t.label = goal.label;
+    t.target_speed = goal.speed;
     t.episodes = static_cast<int>(episodes.size());
+    if (humanoid) t.signature.assign(kGaitStatistics.size(), 0.0);
     for (const auto& e : episodes) {
-      t.mean_speed += e.attributes.at("mean_com_speed") / t.episodes;
+      t.mean_speed += e.attributes.at(goal.attribute) / t.episodes;
       t.fall_rate += (e.terminations.back() ? 1.0 : 0.0) / t.episodes;
+      if (!humanoid) continue;
+      const GaitSignature g = gait_signature(e, prototype->feature_names(), prototype->control_timestep());
+      for (size_t k = 0; k < g.size(); ++k) t.signature[k] += g[k] / t.episodes;
     }
-    t.speed_error = std::abs(t.mean_speed - t.target);
+    t.speed_error = std::abs(t.mean_speed - t.target_speed);
     result.targets.push_back(t);
   }
   return result;
@@ -46,17 +76,30 @@ ExpertEvaluation evaluate_expert(const LoadedExpert& expert, const ExpertEvalOpt
 std::string format_evaluations(const std::vector<ExpertEvaluation>& evaluations) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line, "%-28s %7s %9s %10s %11s %9s  %s\n", "expert", "target", "episodes",
+  const bool signatures = !evaluations.empty() && !evaluations.front().targets.empty() &&
+                          !evaluations.front().targets.front().signature.empty();
+  std::snprintf(line, sizeof line, "%-28s %7s %9s %10s %11s %9s  %s", "expert", "target", "episodes",
                 "mean speed", "|mean-tgt|", "fall rate", "passes");
   out += line;
+  if (signatures)
+    for (size_t k = 1; k < kGaitStatistics.size(); ++k) out += std::string(" ") + kGaitStatistics[k];
+  out += "\n";
   int passing = 0;
   for (const auto& e : evaluations) {
     const bool ok = e.passes();
     passing += ok;
     for (const auto& t : e.targets) {
-      std::snprintf(line, sizeof line, "%-28s %7.2f %9d %10.3f %11.3f %9.2f  %s\n", e.id.c_str(), t.target,
-                    t.episodes, t.mean_speed, t.speed_error, t.fall_rate, ok ? "yes" : "no");
+      // The verdict is padded only where signature columns follow it.
+      std::snprintf(line, sizeof line, "%-28s %7s %9d %10.3f %11.3f %9.2f  %-*s", e.id.c_str(), t.label.c_str(),
+                    t.episodes, t.mean_speed, t.speed_error, t.fall_rate, signatures ? 6 : 0, ok ? "yes" : "no");
       out += line;
+      // The signature's first statistic is the mean speed, already printed.
+      for (size_t k = 1; k < t.signature.size(); ++k) {
+        std::snprintf(line, sizeof line, " %*.3f", static_cast<int>(std::string(kGaitStatistics[k]).size()),
+                      t.signature[k]);
+        out += line;
+      }
+      out += "\n";
     }
   }
   std::snprintf(line, sizeof line, "\n%d of %zu experts pass (every target within 0.3 m/s, falls < 10%%)\n",
