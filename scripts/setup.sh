@@ -36,5 +36,5 @@ if [[ -e $openblas/libblas.so.3 ]] && ! readlink -f /usr/lib/x86_64-linux-gnu/li
   "${as_root[@]}" update-alternatives --set liblapack.so.3-x86_64-linux-gnu $openblas/liblapack.so.3
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DVAEGAIL_STAGES="util;env;data;rl;experts;vae;gail;eval;plot;bench;cli" >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DVAEGAIL_STAGES="util;env;data;rl;experts;vae;gail;eval;plot;bench;cli;controller" >/dev/null
 cmake --build build -j"$(nproc)"

@@ -90,6 +90,22 @@ StepOutcome MujocoEnv::step(const float* action) {
 
 double MujocoEnv::reward(const float*) const { return 0.0; }
 
+void MujocoEnv::set_state(const mjModel* model, const mjData* data) {
+  const mjModel* m = model_->get();
+  if (model->nq != m->nq || model->nv != m->nv || model->na != m->na || model->nu != m->nu)
+    throw std::invalid_argument(model_->source() + ": the simulation's model has nq/nv/na/nu " +
+                                std::to_string(model->nq) + "/" + std::to_string(model->nv) + "/" +
+                                std::to_string(model->na) + "/" + std::to_string(model->nu) + ", this one " +
+                                std::to_string(m->nq) + "/" + std::to_string(m->nv) + "/" +
+                                std::to_string(m->na) + "/" + std::to_string(m->nu));
+  mjData* d = data_.get();
+  std::copy_n(data->qpos, m->nq, d->qpos);
+  std::copy_n(data->qvel, m->nv, d->qvel);
+  std::copy_n(data->act, m->na, d->act);
+  d->time = data->time;
+  mj_forward(m, d);
+}
+
 void MujocoEnv::observe(float* out) const {
   const mjModel* m = model_->get();
   const mjData* d = data_.get();

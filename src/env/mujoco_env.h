@@ -43,6 +43,11 @@ class MujocoEnv : public Env {
 
   const mjModel* model() const { return model_->get(); }
   const mjData* data() const { return data_.get(); }
+  // Puts this environment in the state (qpos, qvel, act, time) of another simulation of the same
+  // model, derived quantities computed (mj_forward), so that observe() reads what the task would
+  // observe there: src/controller's observe() of a user's own mjData. Throws naming the model
+  // when `model`'s sizes differ from this one's.
+  void set_state(const mjModel* model, const mjData* data);
   // Centre-of-mass velocity of the subtree rooted at `body` (world frame, m/s).
   void subtree_velocity(int body, double out[3]) const;
 

@@ -7,6 +7,7 @@
 
 #include "env/embedded_models.h"
 #include "env/registry.h"
+#include "env/walker.h"
 
 namespace vaegail {
 namespace {
@@ -65,6 +66,40 @@ TEST(MujocoEnv, MissingOrBrokenModelsNameTheFile) {
 TEST(MujocoEnv, WalkerModelIsEmbedded) {
   EXPECT_NE(embedded_model("walker.xml").find("vaegail_walker"), std::string::npos);
   EXPECT_THROW(embedded_model("nothing.xml"), std::out_of_range);
+}
+
+TEST(MujocoEnv, SetStateObservesAnotherSimulationAfterItsSteps) {
+  WalkerEnv source, copy;
+  source.reset(4);
+  copy.reset(5);
+  const float action[6] = {0.8f, -0.5f, 0.3f, -0.9f, 0.6f, -0.2f};
+  for (int t = 0; t < 20; ++t) source.step(action);
+  // After mj_step the source's kinematics are refreshed by its own step(); a user's mjData
+  // would hold those of the state before: set_state must not rely on them.
+  mjData* stale = mj_makeData(source.model());
+  mj_copyData(stale, source.model(), source.data());
+  mju_zero(stale->xpos, 3 * source.model()->nbody);
+  copy.set_state(source.model(), stale);
+  EXPECT_EQ(copy.observation(), source.observation());
+  std::vector<double> a(3), b(3);
+  source.features(a.data());
+  copy.features(b.data());
+  EXPECT_EQ(a, b);
+  mj_deleteData(stale);
+}
+
+TEST(MujocoEnv, SetStateRejectsAnotherModelNamingIt) {
+  EnvRequest request;
+  request.task = write_temp("vaegail_pendulum.xml", kPendulum);
+  auto pendulum = make_env(request);
+  WalkerEnv walker;
+  try {
+    walker.set_state(dynamic_cast<MujocoEnv&>(*pendulum).model(), dynamic_cast<MujocoEnv&>(*pendulum).data());
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("walker.xml: the simulation's model has nq/nv/na/nu 1/1/0/1"),
+              std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

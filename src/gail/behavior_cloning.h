@@ -19,34 +19,14 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "data/demos.h"
+#include "gail/bc_agent.h"
 #include "rl/agent.h"
 
 namespace vaegail {
-
-struct BcOptions {
-  std::vector<int> hidden = {200, 100};  // the GAIL policy's sizes (Table 2, walker)
-  int epochs = 100;
-  int batch_size = 256;
-  double learning_rate = 1e-3;  // Adam; the paper gives no BC settings
-  double init_log_std = -1.0;
-  std::uint64_t seed = 0;
-  std::string device = "cpu";
-  std::string demos_path;  // for the record
-};
-
-void to_json(nlohmann::json& j, const BcOptions& o);
-void from_json(const nlohmann::json& j, BcOptions& o);
-
-// The BC agent before training: normaliser frozen at observations' [M, obs_dim] statistics.
-std::shared_ptr<Agent> make_bc_agent(const BcOptions& options, const torch::Tensor& observations, int act_dim);
-
-// The trained agent of a `bc train` run directory, on `device`. Throws naming the file.
-std::shared_ptr<Agent> load_bc_agent(const std::string& run_dir, int obs_dim, int act_dim, torch::Device device);
 
 class BehaviorCloning {
  public:

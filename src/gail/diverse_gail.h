@@ -39,7 +39,6 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -47,6 +46,7 @@
 #include "env/env.h"
 #include "env/vec_env.h"
 #include "gail/discriminator.h"
+#include "gail/gail_agent.h"
 #include "gail/gail_demos.h"
 #include "gail/gail_reward.h"
 #include "rl/agent.h"
@@ -56,42 +56,6 @@
 #include "vae/trajectory_vae.h"
 
 namespace vaegail {
-
-enum class GailMode { Diverse, Plain };
-std::string to_string(GailMode mode);
-GailMode parse_gail_mode(const std::string& name);  // "diverse" | "plain"; std::invalid_argument otherwise
-
-struct GailOptions {
-  GailMode mode = GailMode::Diverse;
-  int iterations = 30000;   // Table 3, walker
-  double minutes = 0;       // wall-clock budget of one call; 0: none
-  int num_envs = 16;
-  int env_threads = 1;
-  int steps_per_env = 0;    // per iteration; 0: the environment's episode length
-  std::vector<int> policy_hidden = {200, 100};       // Table 2, walker
-  std::vector<int> critic_hidden = {200, 100};
-  std::vector<int> discriminator_hidden = {100, 64};
-  std::vector<int> discriminator_state_indices;      // empty: the whole observation
-  double init_log_std = -1.0;                        // Table 3: initial std exp(-1)
-  // Not given by the paper; the rl stage's TRPO defaults (Schulman et al.'s usual values).
-  double gamma = 0.99;
-  double lambda = 0.95;
-  double max_kl = 0.01;
-  double critic_learning_rate = 1e-3;
-  int discriminator_steps = 10;                      // Table 3
-  // Not in the paper: the batch of each step. 10: one pass over the iteration's samples in
-  // 10 steps; 1: every step on all of them (what runs written before this option did).
-  int discriminator_minibatches = 10;
-  double discriminator_learning_rate = 1e-4;         // Table 3
-  double reward_clip = kDefaultGailRewardClip;
-  std::uint64_t seed = 0;
-  std::string device = "cpu";
-  // Recorded in config.json for the record; the trainer is handed the loaded data.
-  std::string demos_path, vae_path;
-};
-
-void to_json(nlohmann::json& j, const GailOptions& o);
-void from_json(const nlohmann::json& j, GailOptions& o);
 
 // One metrics.csv row.
 struct GailMetrics {
@@ -117,21 +81,6 @@ struct GailPhaseSeconds {
   double total() const { return rollout + policy_update + discriminator + bookkeeping; }
   GailPhaseSeconds& operator+=(const GailPhaseSeconds& o);
 };
-
-// The agent of a mode: ResidualPolicy on the frozen `vae` (diverse) or a GaussianPolicy
-// (plain), a critic on the same input, and an observation normaliser frozen at the
-// statistics of demo_observations [S, obs_dim]. Seeded from options.seed.
-std::shared_ptr<Agent> make_gail_agent(const GailOptions& options, int obs_dim, int act_dim,
-                                       const torch::Tensor& demo_observations, vae::TrajectoryVae vae);
-
-// The trained agent of a `gail train` run directory (config.json and checkpoints/latest.pt),
-// on `device`, for evaluation; `vae` is required in diverse mode. Throws naming the file.
-std::shared_ptr<Agent> load_gail_agent(const std::string& run_dir, int obs_dim, int act_dim,
-                                       vae::TrajectoryVae vae, torch::Device device);
-
-// An agent's mean action as a policy to roll out (vae/imitation.h); an agent trained without a
-// latent (plain GAIL, behaviour cloning) ignores z.
-vae::LatentPolicy agent_mean_policy(std::shared_ptr<Agent> agent);
 
 class GailTrainer {
  public:

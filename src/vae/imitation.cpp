@@ -116,10 +116,4 @@ torch::Tensor encode_episodes(TrajectoryVae& model, const DemoSet& demos, const 
   return torch::cat(mus);
 }
 
-LatentPolicy vae_mean_policy(TrajectoryVae model, torch::Device device) {
-  return [model, device](const torch::Tensor& obs, const torch::Tensor& z) mutable {
-    return model->action_mean(obs.to(device), z.to(device));
-  };
-}
-
 }  // namespace vaegail::vae

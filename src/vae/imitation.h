@@ -6,24 +6,18 @@
 #include <torch/torch.h>
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "data/demos.h"
 #include "env/env.h"
-#include "vae/trajectory_vae.h"
+#include "vae/trained_vae.h"
 
 namespace vaegail {
 class Progress;
 }
 
 namespace vaegail::vae {
-
-// observations [N, obs_dim] float CPU, z [N, Z] float CPU -> actions [N, act_dim] (any float
-// tensor, any device). Called once per control step with the episodes still running.
-using LatentPolicy = std::function<torch::Tensor(const torch::Tensor& observations,
-                                                 const torch::Tensor& z)>;
 
 // Where an imitation starts: the demonstration's reset seed and context; with both the env
 // reproduces the demonstration's initial state exactly.
@@ -59,9 +53,6 @@ std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
 // asked for). `progress` advances by one per episode.
 torch::Tensor encode_episodes(TrajectoryVae& model, const DemoSet& demos, const std::vector<int64_t>& episodes,
                               torch::Tensor* sigma = nullptr, Progress* progress = nullptr);
-
-// The VAE policy's mean action π_α(x, z), the imitation the paper evaluates.
-LatentPolicy vae_mean_policy(TrajectoryVae model, torch::Device device);
 
 // The median; 0 for none.
 double median(std::vector<double> values);

@@ -252,37 +252,6 @@ void VaeTrainer::load_checkpoint(const std::string& path) {
   epoch_ = static_cast<int>(epoch.toInt());
 }
 
-TrajectoryVae load_trained_vae(const std::string& checkpoint_path, const torch::Device& device) {
-  torch::serialize::InputArchive archive, model_archive;
-  archive.load_from(checkpoint_path, device);
-  c10::IValue config_json;
-  archive.read("config", config_json);
-  TrajectoryVae model(VaeConfig::from_json(config_json.toStringRef()));
-  archive.read("model", model_archive);
-  model->load(model_archive);
-  model->to(device);
-  return model;
-}
-
-std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model, const torch::Tensor& states,
-                                               const torch::Tensor& step_mask, int64_t batch_size) {
-  torch::NoGradGuard no_grad;
-  const auto device = model->state_decoder()->parameters().front().device();
-  std::vector<torch::Tensor> mus, sigmas;
-  const int64_t M = states.size(0), bs = std::max<int64_t>(1, batch_size);
-  for (int64_t b = 0; b < M; b += bs) {
-    const int64_t n = std::min(bs, M - b);
-    const auto s = states.narrow(0, b, n).to(device);
-    const auto m = step_mask.defined()
-                       ? state_mask_from_step_mask(step_mask.narrow(0, b, n).to(device))
-                       : torch::Tensor();
-    const auto q = model->encode(s, m);
-    mus.push_back(q.mean.cpu());
-    sigmas.push_back(q.log_std.exp().cpu());
-  }
-  return {torch::cat(mus), torch::cat(sigmas)};
-}
-
 std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model, const TrajectoryDataset& data,
                                                int64_t batch_size) {
   return encode(model, data.states, data.mask, batch_size);

@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "vae/trained_vae.h"
 #include "vae/trajectory_vae.h"
 #include "vae/vae_config.h"
 
@@ -94,11 +95,7 @@ class VaeTrainer {
   std::string checkpoint_file(const std::string& name) const;  // run_dir/checkpoints/name
 };
 
-// (mu, sigma) [M, Z] of q(z | states) for every trajectory, in batches, without gradient,
-// returned on the CPU. states [M, T+1, D] raw; step_mask [M, T] optional (as in the dataset).
-std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model, const torch::Tensor& states,
-                                               const torch::Tensor& step_mask = {},
-                                               int64_t batch_size = 64);
+// encode() of the dataset's states and mask (trained_vae.h).
 std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model,
                                                const TrajectoryDataset& data,
                                                int64_t batch_size = 64);
@@ -107,9 +104,5 @@ std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model,
 // E > 0 the cosine schedule lr * (1 + cos(pi * (epoch - 1) / E)) / 2, which starts at lr and
 // reaches 0 after epoch E. Throws std::invalid_argument for an epoch past E (it would not learn).
 double scheduled_learning_rate(const VaeConfig& config, int epoch);
-
-// Loads the model alone from a trainer checkpoint (config read from the checkpoint).
-TrajectoryVae load_trained_vae(const std::string& checkpoint_path,
-                               const torch::Device& device = torch::kCPU);
 
 }  // namespace vaegail::vae
