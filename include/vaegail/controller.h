@@ -31,9 +31,12 @@
 struct mjModel_;  // MuJoCo's mjModel and mjData (<mujoco/mujoco.h>)
 struct mjData_;
 
+// The library is built with hidden symbols; the Controller is what it exports.
+#define VAEGAIL_CONTROLLER_API __attribute__((visibility("default")))
+
 namespace vaegail {
 
-class Controller {
+class VAEGAIL_CONTROLLER_API Controller {
  public:
   // `task` is the environment the policy was trained in: a built-in task ("walker", "arm",
   // "humanoid") or the path of the MJCF file of your own body. It gives the observation and
