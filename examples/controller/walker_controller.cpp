@@ -1,6 +1,7 @@
-// One-shot imitation in your own MuJoCo loop: embed one demonstration of the walker, then let
-// the trained policy walk the model for one episode, and compare its speed with the
-// demonstration's. Uses the plain MuJoCo C API and vaegail/controller.h, nothing else.
+// One-shot imitation in your own MuJoCo loop: embed one demonstration of the walker, start the
+// model where the demonstration started, let the trained policy walk it for one episode, and
+// compare its speed with the demonstration's. Uses the plain MuJoCo C API and
+// vaegail/controller.h, nothing else.
 //
 //   walker_controller MODEL.xml DEMO.txt VAE_CHECKPOINT [GAIL_RUN_DIR]
 //
@@ -10,6 +11,7 @@
 #include <mujoco/mujoco.h>
 #include <vaegail/controller.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -46,6 +48,19 @@ std::vector<float> read_states(const std::string& path, int obs_dim) {
   return states;
 }
 
+// Puts the walker in the state an observation describes (src/env/walker.h's layout: torso height,
+// pitch as sin/cos, six joint angles, root velocities, six joint velocities), at x = 0. The torso
+// is the body the root joints move, so its height is its rest height 1.3 m plus the rootz slide.
+void set_walker_state(const mjModel* m, mjData* d, const float* obs) {
+  mj_resetData(m, d);
+  d->qpos[0] = 0;
+  d->qpos[1] = obs[0] - 1.3;
+  d->qpos[2] = std::atan2(obs[1], obs[2]);
+  for (int j = 0; j < 6; ++j) d->qpos[3 + j] = obs[3 + j];
+  for (int k = 0; k < 9; ++k) d->qvel[k] = obs[9 + k];
+  mj_forward(m, d);
+}
+
 double mean_column(const std::vector<float>& rows, int width, int column) {
   double sum = 0;
   const size_t n = rows.size() / width;
@@ -73,14 +88,16 @@ int run(int argc, char** argv) {
   std::printf("demonstration: %zu states, mean forward speed %.2f m/s; z has %zu values\n",
               demo.size() / controller.obs_dim(), mean_column(demo, controller.obs_dim(), kRootxVel), z.size());
 
-  mj_forward(m, d);  // the model's initial pose, standing still
+  set_walker_state(m, d, demo.data());  // as the paper's one-shot imitation starts
   const double start_x = d->qpos[0];
-  double speed_sum = 0;
+  double speed_sum = 0, act_seconds = 0;
   int steps = 0;
   std::vector<float> obs = controller.observe(m, d);
   const auto fallen = [&] { return obs[0] < kFallHeight || obs[2] < kFallCosPitch; };
   while (steps < kEpisodeSteps && !fallen()) {
+    const auto start = std::chrono::steady_clock::now();
     const std::vector<float> action = controller.act(obs, z);
+    act_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (int a = 0; a < m->nu; ++a) d->ctrl[a] = action[a];
     for (int k = 0; k < frame_skip; ++k) mj_step(m, d);
     ++steps;
@@ -90,6 +107,7 @@ int run(int argc, char** argv) {
   std::printf("policy: %d steps (%.1f s)%s, distance %.2f m, mean forward speed %.2f m/s\n", steps,
               steps * controller.control_timestep(), fallen() ? ", fell" : ", did not fall", d->qpos[0] - start_x,
               speed_sum / steps);
+  std::printf("act(): %.0f us per call\n", 1e6 * act_seconds / steps);
   mj_deleteData(d);
   mj_deleteModel(m);
   return 0;

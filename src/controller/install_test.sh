@@ -2,7 +2,8 @@
 # The controller package as a user meets it (ctest runs this as `controller_install_test`):
 # `cmake --install` into a temporary prefix; the installed header includes the standard library
 # only and the library carries no HDF5 or training code; examples/controller configures with
-# find_package(vaegail), builds, and walks the walker for one episode on the committed VAE.
+# find_package(vaegail), builds, and walks the walker for one episode: the committed diverse-GAIL
+# policy imitating the committed 1 m/s demonstration, from its initial state.
 # Usage: src/controller/install_test.sh BUILD_DIR REPO_ROOT
 set -euo pipefail
 [ $# -eq 2 ] || { echo "usage: $0 BUILD_DIR REPO_ROOT" >&2; exit 2; }
@@ -28,8 +29,8 @@ exported=$(nm -DC --defined-only "$lib" | grep ' vaegail::' | grep -v 'vaegail::
 cmake -S "$root/examples/controller" -B "$tmp/example" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$tmp/example" >/dev/null
 out=$("$tmp/example/walker_controller" "$root/models/walker.xml" "$root/examples/controller/walker_demo.txt" \
-  "$root/checkpoints/walker/vae/checkpoints/latest.pt")
+  "$root/checkpoints/walker/vae/checkpoints/latest.pt" "$root/checkpoints/walker/diverse_gail")
 echo "$out"
 grep -q '^demonstration: 401 states, mean forward speed 1.0. m/s; z has 20 values$' <<< "$out" || fail "demonstration line"
-grep -qE '^policy: 400 steps \(10.0 s\), did not fall' <<< "$out" || fail "the VAE policy did not walk the whole episode"
+grep -qE '^policy: 400 steps \(10.0 s\), did not fall' <<< "$out" || fail "the diverse-GAIL policy did not walk the whole episode"
 echo "controller_install_test: ok"
