@@ -13,6 +13,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libpng-dev
   libgtest-dev libbenchmark-dev
   python3-h5py python3-numpy  # tests: fixtures in the layouts of h5py, Minari and imitation
+  openmpi-bin libopenmpi-dev  # `mpirun -np K vaegail gail|experts train`: one run on K processes (util/world.h)
 )
 
 missing=()
