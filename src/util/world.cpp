@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <stdexcept>
+#include <type_traits>
 
 #ifdef VAEGAIL_WITH_MPI
 // The C API only: the deprecated C++ bindings would need libmpi_cxx.
@@ -63,20 +64,28 @@ World::~World() {
 #endif
 }
 
-void World::sum(double* values, std::int64_t count) const {
-  if (size_ == 1 || count == 0) return;
+namespace {
+
+// Sums `count` values of one MPI type over MPI_COMM_WORLD, in place.
+template <typename T>
+void all_reduce_sum(T* values, std::int64_t count) {
 #ifdef VAEGAIL_WITH_MPI
-  check(MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD),
-        "MPI_Allreduce");
+  const MPI_Datatype type = std::is_same_v<T, double> ? MPI_DOUBLE : MPI_FLOAT;
+  check(MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), type, MPI_SUM, MPI_COMM_WORLD), "MPI_Allreduce");
+#else
+  (void)values;
+  (void)count;
 #endif
 }
 
+}  // namespace
+
+void World::sum(double* values, std::int64_t count) const {
+  if (size_ > 1 && count > 0) all_reduce_sum(values, count);
+}
+
 void World::sum(float* values, std::int64_t count) const {
-  if (size_ == 1 || count == 0) return;
-#ifdef VAEGAIL_WITH_MPI
-  check(MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_FLOAT, MPI_SUM, MPI_COMM_WORLD),
-        "MPI_Allreduce");
-#endif
+  if (size_ > 1 && count > 0) all_reduce_sum(values, count);
 }
 
 double World::sum(double value) const {
