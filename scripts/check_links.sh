@@ -25,7 +25,7 @@ while read -r md; do
     [ -z "$file" ] && path=$md
     if [ ! -e "$path" ]; then
       echo "FAIL: $md: link to $target: no such file"; failures=$((failures + 1))
-    elif [ -n "$anchor" ] && ! anchors_of "$path" | grep -qxF -- "$anchor"; then
+    elif [ -n "$anchor" ] && ! grep -qxF -- "$anchor" <<< "$(anchors_of "$path")"; then
       echo "FAIL: $md: link to $target: no such heading in $path"; failures=$((failures + 1))
     fi
   done < <(grep -oE '\]\([^) ]+\)' "$md" | sed -E 's/^\]\(//; s/\)$//')

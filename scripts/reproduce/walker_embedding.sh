@@ -16,7 +16,7 @@
 #            without the cost, two splits each
 #   context  8 more context-conditioned experts (2 M steps, then continued to 4 M), the decayed run with them
 #   seeds    the matched set at more seeds: three runs side by side, 112 minutes
-#   summary  scripts/knn_summary.sh: every scored run at its last epoch (a table of docs/results.md): seconds
+#   summary  scripts/knn_summary.sh: every scored run at its last epoch (docs/experiments/walker-embedding.md): seconds
 #   all      every stage in order: about a day on 2 cores
 # A run of 30 epochs takes about 36 minutes alone on 2 cores (one Torch thread), scoring its epochs about 30 s
 # each (scripts/knn_per_epoch.sh). --dry-run prints the commands without running them.
