@@ -2,7 +2,8 @@
 # The command line's promises, checked on the built binary (ctest runs this as `cli_test`):
 # every command and subcommand answers --help; bad input (a missing, random or truncated file,
 # a malformed CSV, a nan, wrong dimensions, an unknown flag) ends with a non-zero exit, one
-# line on stderr naming the problem, and no output file.
+# line on stderr naming the problem, and no output file; the scripts in scripts/reproduce/ call commands
+# and options that exist.
 # Usage: src/cli/cli_test.sh VAEGAIL_BINARY REPO_ROOT
 set -uo pipefail
 [ $# -eq 2 ] || { echo "usage: $0 VAEGAIL_BINARY REPO_ROOT" >&2; exit 2; }
@@ -133,6 +134,36 @@ expect_error "--config must give a 'grid' or 'grids'" "$tmp/h" -- experts train 
   "$v" demos styles --demos "$tmp/h.h5" > "$tmp/stdout" 2>&1 && grep -q "of 2 held-out episodes named right" "$tmp/stdout" ||
   fail "demos collect --task humanoid, demos styles: $(cat "$tmp/stdout")"
 expect_error "demos styles reads humanoid demonstrations" "" -- demos styles --demos "$tmp/one.h5"
+
+# ---- the reproduce scripts call commands and options that exist ------------------------
+# Every vaegail line a script prints under --dry-run names a command whose --help lists each of its options
+# (or the tool's own, such as --torch-threads), and every other program it calls is there.
+declare -A helps
+global_help=$("$v" --help 2>&1)
+for script in "$root"/scripts/reproduce/*.sh; do
+  [ -x "$script" ] || continue
+  name=$(basename "$script")
+  while read -r line; do
+    read -ra words <<< "${line#+ }"
+    if [ "${words[0]}" != build/vaegail ]; then
+      [ "${words[0]}" = cp ] || [ -x "$root/${words[0]}" ] || fail "$name calls ${words[0]}, not an executable script"
+      continue
+    fi
+    command=() i=1
+    while [ $i -lt ${#words[@]} ]; do  # the tool's options, then the command's words up to its first option
+      case ${words[i]} in --torch-threads) i=$((i + 2)); continue ;; -*|*/*|*.*) break ;; esac
+      command+=("${words[i]}")
+      i=$((i + 1))
+    done
+    key=${command[*]}
+    [ -n "${helps[$key]+x}" ] || helps[$key]=$("$v" "${command[@]}" --help 2>&1)
+    for w in "${words[@]}"; do
+      [[ $w == --* ]] || continue
+      grep -qE -- "(^|[^-[:alnum:]_])$w([^-[:alnum:]_]|$)" <<< "${helps[$key]}$global_help" ||
+        fail "$name: vaegail $key has no $w"
+    done
+  done < <("$script" --dry-run all | grep '^+ ')
+done
 
 echo "$helped commands answered --help; $failures failure(s)"
 [ "$failures" -eq 0 ]
