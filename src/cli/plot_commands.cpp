@@ -53,6 +53,7 @@ struct CurvesOptions {
 };
 
 void run_curves(const CurvesOptions& o) {
+  require_plotting("plot curves");
   if (split_names(o.y).empty()) throw std::invalid_argument("--y: name at least one column");
   std::vector<std::string> args{"--csv", o.csv, "--x", o.x, "--y", o.y};
   if (o.log_y) args.push_back("--log-y");
