@@ -8,7 +8,6 @@
 #include "cli/task_options.h"
 #include "data/demo_stats.h"
 #include "data/foreign_demos.h"
-#include "util/atomic_file.h"
 #include "util/histogram.h"
 
 namespace vaegail::cli {
@@ -71,14 +70,8 @@ void run_info(const InfoOptions& o) {
   const std::string what = "episode mean " + o.feature;
   std::printf("\ndistribution of %s (episodes per bin)\n", what.c_str());
   std::fputs(histogram_table(edges, series).c_str(), stdout);
-  const std::string data = figure_data_path(o.histogram);
-  write_file_atomically(data, histogram_csv(series));
-  if (draw_figure_if_possible("histogram.py", {"--csv", data, "--column", "value", "--group-by", "series", "--bins",
-                                               std::to_string(o.bins), "--title", "distribution of " + what,
-                                               "--xlabel", what, "--ylabel", "episodes", "--out", o.histogram}))
-    std::printf("wrote %s and %s\n", o.histogram.c_str(), data.c_str());
-  else
-    std::printf("wrote %s\n", data.c_str());
+  const bool drawn = save_histogram_figure(o.histogram, series, o.bins, {"distribution of " + what, what, "episodes"});
+  std::printf("wrote %s%s\n", drawn ? (o.histogram + " and ").c_str() : "", figure_data_path(o.histogram).c_str());
 }
 
 struct ImportOptions {

@@ -40,20 +40,14 @@ std::vector<double> column(const std::vector<eval::ImitationRow>& rows, const st
 }
 
 // The series' values as FIGURE.csv, their counts printed, and the figure drawn when matplotlib is there.
-void save_histogram(const std::string& figure, const std::string& title, const std::string& x_label,
-                    const std::string& y_label, const std::vector<HistogramSeries>& series) {
+void save_histogram(const std::string& figure, const FigureLabels& labels, const std::vector<HistogramSeries>& series) {
   std::vector<HistogramSeries> drawn;
   for (const auto& s : series)
     if (!s.values.empty()) drawn.push_back(s);
   if (drawn.empty()) return;
   const int bins = 30;
-  const auto edges = even_bin_edges(drawn, bins);
-  const std::string data = figure_data_path(figure);
-  write_file_atomically(data, histogram_csv(drawn));
-  std::printf("\n%s\n%s", title.c_str(), histogram_table(edges, drawn).c_str());
-  draw_figure_if_possible("histogram.py", {"--csv", data, "--column", "value", "--group-by", "series", "--bins",
-                                           std::to_string(bins), "--title", title, "--xlabel", x_label, "--ylabel",
-                                           y_label, "--out", figure});
+  std::printf("\n%s\n%s", labels.title.c_str(), histogram_table(even_bin_edges(drawn, bins), drawn).c_str());
+  save_histogram_figure(figure, drawn, bins, labels);
 }
 
 }  // namespace
@@ -114,11 +108,12 @@ void run_eval_walker(const EvalWalkerFlags& f) {
     for (const auto& p : policies) errors.push_back({p.name, column(rows, p.name, held_out, abs_diff)});
     const std::string which = held_out ? "one-shot (held out)" : "training experts";
     save_histogram(f.out_dir + (held_out ? "/speed_difference_held_out.png" : "/speed_difference.png"),
-                   "|demo - imitation speed|, " + which, "m/s", "demonstrations", errors);
+                   {"|demo - imitation speed|, " + which, "m/s", "demonstrations"}, errors);
   }
   std::vector<HistogramSeries> speeds{{"demonstrations", column(rows, "vae", false, demo)}};
   for (const auto& p : policies) speeds.push_back({p.name, column(rows, p.name, false, achieved)});
-  save_histogram(f.out_dir + "/speeds.png", "average speed: demonstrations and imitations", "m/s", "episodes", speeds);
+  save_histogram(f.out_dir + "/speeds.png", {"average speed: demonstrations and imitations", "m/s", "episodes"},
+                 speeds);
   std::printf("\n%s\nwrote %s/{imitation.csv, summary.md, speed_difference, speed_difference_held_out, speeds}"
               ".{csv,png}\n", table.c_str(), f.out_dir.c_str());
 }

@@ -136,4 +136,13 @@ std::string figure_data_path(const std::string& figure) {
   return fs::path(figure).replace_extension(".csv").string();
 }
 
+bool save_histogram_figure(const std::string& figure, const std::vector<HistogramSeries>& series, int bins,
+                           const FigureLabels& labels) {
+  const std::string data = figure_data_path(figure);
+  write_file_atomically(data, histogram_csv(series));
+  return draw_figure_if_possible("histogram.py", {"--csv", data, "--column", "value", "--group-by", "series", "--bins",
+                                                  std::to_string(bins), "--title", labels.title, "--xlabel", labels.x,
+                                                  "--ylabel", labels.y, "--out", figure});
+}
+
 }  // namespace vaegail::cli

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "util/histogram.h"
+
 namespace vaegail::cli {
 
 // Whether some python3 imports matplotlib (checked once per process).
@@ -30,5 +32,14 @@ bool draw_figure_if_possible(const std::string& script, const std::vector<std::s
 
 // The file beside `figure` that holds its data: FIGURE without its extension, then ".csv".
 std::string figure_data_path(const std::string& figure);
+
+struct FigureLabels {
+  std::string title, x, y;
+};
+// Overlaid histograms of `series` on `bins` equal bins: writes the values to
+// figure_data_path(figure) (util/histogram.h's histogram_csv), then draws `figure` from it when
+// matplotlib is there (draw_figure_if_possible). Returns whether the figure was drawn.
+bool save_histogram_figure(const std::string& figure, const std::vector<HistogramSeries>& series, int bins,
+                           const FigureLabels& labels);
 
 }  // namespace vaegail::cli
