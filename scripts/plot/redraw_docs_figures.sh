@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# Redraws every figure docs/ and README.md show from the committed CSV files, without rerunning
-# anything: the titles and labels are those the vaegail commands that made them give.
-# Usage: scripts/plot/redraw_docs_figures.sh   (about 20 s)
+# Redraws every figure docs/ and README.md show, and the other committed figures whose data is
+# committed as CSV, without rerunning anything: the titles and labels are those the vaegail
+# commands that made them give.
+# Usage: scripts/plot/redraw_docs_figures.sh   (about 20 s on an idle machine)
 #
 # Not here, because their data is not committed as CSV: results/arm*/eval*/reach_paths.png and
 # interpolation_pair_*.png (the paths; `eval arm` writes them as reach_paths.csv and
 # interpolation_pair_N.csv since the figures moved to matplotlib, but the arm VAEs' weights are
-# not committed, so rerunning it means retraining).
+# not committed, so rerunning it means retraining); results/walker/dense*/speeds.png (from the
+# git-ignored dense demonstration sets); results/walker/dense_root/vae_loss.png (its run is not
+# committed).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/plot/find_python.sh
@@ -41,9 +44,14 @@ histograms() {  # the three of `eval walker`, from the CSV files it writes besid
 }
 histograms results/walker/eval
 
-# scripts/walker_dense_results.sh
+# scripts/walker_dense_results.sh, on the published dense VAE and on the root-only encoder
 tsne results/walker/dense
+draw curves.py --csv checkpoints/walker/vae_dense/metrics.csv --y train_loss,val_loss --log-y \
+  --title "walker VAE, dense set: loss per epoch" --out results/walker/dense/vae_loss.png
+tsne results/walker/dense_root
 
 # scripts/arm_results.sh
-draw curves.py --csv checkpoints/arm/vae/metrics.csv --y train_loss,val_loss --title "arm VAE: loss per epoch" \
-  --out results/arm/vae_loss.png
+for run in arm:vae arm_posture:vae_posture; do
+  draw curves.py --csv "checkpoints/arm/${run#*:}/metrics.csv" --y train_loss,val_loss \
+    --title "arm VAE: loss per epoch" --out "results/${run%:*}/vae_loss.png"
+done
