@@ -25,7 +25,7 @@ const char* kInstall = "needs python3 with matplotlib (apt-get install python3-m
 
 struct Finished {
   int exit_code = -1;  // -1: could not start, or killed by a signal
-  std::string err;     // what it wrote to stderr, when captured
+  std::string err;     // what it wrote to stderr
 };
 
 // Runs argv[0] (looked up on PATH) with stdout inherited, or sent to /dev/null when `quiet`;
