@@ -10,10 +10,11 @@ packages=(
   libmujoco-dev libqhull-dev  # MuJoCo 2.2 C API (its CMake target names qhull's headers)
   libhdf5-dev             # demonstration files
   libopenblas0-openmp     # BLAS for LibTorch: ~8x faster LSTMs than the reference BLAS
-  libcli11-dev nlohmann-json3-dev libpng-dev
+  libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   python3-h5py python3-numpy  # tests: fixtures in the layouts of h5py, Minari and imitation
   openmpi-bin libopenmpi-dev  # `mpirun -np K vaegail gail|experts train`: one run on K processes (util/world.h)
+  python3-matplotlib      # figures: scripts/plot/ draws the CSV files vaegail writes
 )
 
 missing=()
@@ -37,5 +38,5 @@ if [[ -e $openblas/libblas.so.3 ]] && ! readlink -f /usr/lib/x86_64-linux-gnu/li
   "${as_root[@]}" update-alternatives --set liblapack.so.3-x86_64-linux-gnu $openblas/liblapack.so.3
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DVAEGAIL_STAGES="util;env;data;rl;experts;vae;gail;eval;plot;bench;cli" >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DVAEGAIL_STAGES="util;env;data;rl;experts;vae;gail;eval;bench;cli" >/dev/null
 cmake --build build -j"$(nproc)"

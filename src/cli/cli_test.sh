@@ -165,5 +165,30 @@ for script in "$root"/scripts/reproduce/*.sh; do
   done < <("$script" --dry-run all | grep '^+ ')
 done
 
+# ---- figures (scripts/plot through the binary) ------------------------------------------
+# Without matplotlib: a figure command stops with one line naming the package; a command whose
+# main output is a table still writes it, and its figure's CSV, with one warning.
+printf '#!/bin/sh\nexit 1\n' > "$tmp/no-matplotlib" && chmod +x "$tmp/no-matplotlib"
+printf 'epoch,train_loss,val_loss\n1,10,12\n2,5,7\n' > "$tmp/metrics.csv"
+VAEGAIL_PYTHON=$tmp/no-matplotlib expect_error "plot curves: needs python3 with matplotlib (apt-get install python3-matplotlib)" \
+  "$tmp/curves.png" -- plot curves --csv "$tmp/metrics.csv" --y train_loss --out "$tmp/curves.png"
+VAEGAIL_PYTHON=$tmp/no-matplotlib "$v" data info "$tmp/one.h5" --histogram "$tmp/speeds.png" > "$tmp/stdout" 2> "$tmp/stderr" &&
+  grep -q "episodes per bin" "$tmp/stdout" && [ -s "$tmp/speeds.csv" ] && [ ! -e "$tmp/speeds.png" ] &&
+  [ "$(grep -c . "$tmp/stderr")" -eq 1 ] && grep -q "python3-matplotlib" "$tmp/stderr" ||
+  fail "data info --histogram without matplotlib: $(cat "$tmp/stderr")"
+source "$root/scripts/plot/find_python.sh"
+if [ -n "$python" ]; then
+  run_in "$tmp" plot curves --csv "$tmp/metrics.csv" --y train_loss,val_loss --log-y --out "$tmp/curves.png" --width 300 --height 200
+  [ -s "$tmp/curves.png" ] || fail "plot curves: no figure"
+  rm -f "$tmp/speeds.csv"
+  run_in "$tmp" data info "$tmp/one.h5" --histogram "$tmp/speeds.png"
+  [ -s "$tmp/speeds.png" ] && [ -s "$tmp/speeds.csv" ] || fail "data info --histogram: no figure or no CSV"
+  # the script's own one-line error, through the binary
+  expect_error "metrics.csv: no column 'nope' (columns: epoch, train_loss, val_loss)" "$tmp/c.png" -- \
+    plot curves --csv "$tmp/metrics.csv" --y nope --out "$tmp/c.png"
+else
+  echo "cli_test: figures through the binary skipped: no python3 with matplotlib"
+fi
+
 echo "$helped commands answered --help; $failures failure(s)"
 [ "$failures" -eq 0 ]

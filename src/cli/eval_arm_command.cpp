@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/figures.h"
 #include "cli/task_options.h"
 #include "eval/arm_eval.h"
 #include "eval/walker_eval.h"
@@ -162,6 +163,13 @@ std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pa
   return text + by_length + "\n";
 }
 
+// STEM.csv (scripts/plot/paths.py's columns), and STEM.png drawn from it when matplotlib is there.
+void draw_paths(const std::string& stem, const std::string& csv, const std::string& title, const std::string& colormap) {
+  write_file_atomically(stem + ".csv", csv);
+  draw_figure_if_possible("paths.py", {"--csv", stem + ".csv", "--colormap", colormap, "--title", title, "--xlabel",
+                                       "grip x (m)", "--ylabel", "grip y (m)", "--out", stem + ".png"});
+}
+
 void run_eval_arm(const EvalArmFlags& f) {
   torch::NoGradGuard no_grad;
   const auto device = parse_device(f.device);
@@ -220,13 +228,14 @@ void run_eval_arm(const EvalArmFlags& f) {
       seen[r.expert_id] = true;
       drawn.push_back(r);
     }
-  eval::reach_paths_chart(drawn, "test demos (solid), imitations (dashed)")
-      .save_png(f.out_dir + "/reach_paths.png");
+  draw_paths(f.out_dir + "/reach_paths", eval::reach_paths_csv(drawn), "test demos (solid), imitations (dashed)",
+             "tab10");
   for (int p = 0; p < std::min<int>(f.drawn_pairs, interpolations.size()); ++p)
-    eval::interpolation_chart(interpolations[p], demos, "latent interpolation, pair " + std::to_string(p))
-        .save_png(f.out_dir + "/interpolation_pair_" + std::to_string(p) + ".png");
-  std::printf("\n%s\nwrote %s/{reaches.csv, interpolation.csv, summary.md, reach_paths.png, interpolation_pair_*.png}\n",
-              table.c_str(), f.out_dir.c_str());
+    draw_paths(f.out_dir + "/interpolation_pair_" + std::to_string(p),
+               eval::interpolation_paths_csv(interpolations[p], demos),
+               "latent interpolation, pair " + std::to_string(p), "viridis");
+  std::printf("\n%s\nwrote %s/{reaches.csv, interpolation.csv, summary.md, reach_paths.{csv,png}, "
+              "interpolation_pair_*.{csv,png}}\n", table.c_str(), f.out_dir.c_str());
 }
 
 }  // namespace

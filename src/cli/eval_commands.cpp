@@ -9,12 +9,13 @@
 
 #include "cli/commands.h"
 #include "cli/eval_policies.h"
+#include "cli/figures.h"
 #include "cli/task_options.h"
 #include "eval/walker_eval.h"
 #include "gail/behavior_cloning.h"
 #include "gail/diverse_gail.h"
-#include "plot/charts.h"
 #include "util/atomic_file.h"
+#include "util/histogram.h"
 #include "util/progress.h"
 #include "vae/vae_trainer.h"
 
@@ -38,15 +39,15 @@ std::vector<double> column(const std::vector<eval::ImitationRow>& rows, const st
   return out;
 }
 
-void save_histogram(const std::string& path, const plot::Labels& labels,
-                    const std::vector<plot::HistogramSeries>& series) {
-  std::vector<plot::HistogramSeries> drawn;
+// The series' values as FIGURE.csv, their counts printed, and the figure drawn when matplotlib is there.
+void save_histogram(const std::string& figure, const FigureLabels& labels, const std::vector<HistogramSeries>& series) {
+  std::vector<HistogramSeries> drawn;
   for (const auto& s : series)
     if (!s.values.empty()) drawn.push_back(s);
   if (drawn.empty()) return;
-  const auto edges = plot::even_bin_edges(drawn, 30);
-  plot::histogram_chart(labels, edges, drawn).save_png(path);
-  std::printf("\n%s\n%s", labels.title.c_str(), plot::histogram_table(edges, drawn).c_str());
+  const int bins = 30;
+  std::printf("\n%s\n%s", labels.title.c_str(), histogram_table(even_bin_edges(drawn, bins), drawn).c_str());
+  save_histogram_figure(figure, drawn, bins, labels);
 }
 
 }  // namespace
@@ -103,18 +104,18 @@ void run_eval_walker(const EvalWalkerFlags& f) {
   const auto achieved = [](const eval::ImitationRow& r) { return r.achieved_speed; };
   const auto demo = [](const eval::ImitationRow& r) { return r.demo_speed; };
   for (const bool held_out : {false, true}) {
-    std::vector<plot::HistogramSeries> errors;
+    std::vector<HistogramSeries> errors;
     for (const auto& p : policies) errors.push_back({p.name, column(rows, p.name, held_out, abs_diff)});
     const std::string which = held_out ? "one-shot (held out)" : "training experts";
     save_histogram(f.out_dir + (held_out ? "/speed_difference_held_out.png" : "/speed_difference.png"),
                    {"|demo - imitation speed|, " + which, "m/s", "demonstrations"}, errors);
   }
-  std::vector<plot::HistogramSeries> speeds{{"demonstrations", column(rows, "vae", false, demo)}};
+  std::vector<HistogramSeries> speeds{{"demonstrations", column(rows, "vae", false, demo)}};
   for (const auto& p : policies) speeds.push_back({p.name, column(rows, p.name, false, achieved)});
   save_histogram(f.out_dir + "/speeds.png", {"average speed: demonstrations and imitations", "m/s", "episodes"},
                  speeds);
-  std::printf("\n%s\nwrote %s/{imitation.csv, summary.md, speed_difference.png, speed_difference_held_out.png, "
-              "speeds.png}\n", table.c_str(), f.out_dir.c_str());
+  std::printf("\n%s\nwrote %s/{imitation.csv, summary.md, speed_difference, speed_difference_held_out, speeds}"
+              ".{csv,png}\n", table.c_str(), f.out_dir.c_str());
 }
 
 void add_eval_walker(CLI::App& eval) {
