@@ -37,7 +37,7 @@ render::Clip demo_clip(const DemoSet& demos, int64_t episode) {
   std::string caption = "demonstration #" + std::to_string(episode);
   for (size_t k = 0; k < e.context.size() && k < demos.header.context_names.size(); ++k) {
     char value[64];
-    std::snprintf(value, sizeof value, "%s%s %g", k ? ", " : "\n", demos.header.context_names[k].c_str(), e.context[k]);
+    std::snprintf(value, sizeof value, "%s%s %.3g", k ? ", " : "\n", demos.header.context_names[k].c_str(), e.context[k]);
     caption += value;
   }
   return {caption, e};
@@ -76,15 +76,18 @@ void write_video(const Env& env, const std::vector<std::vector<render::Clip>>& g
   for (const auto& r : reports)
     if (r.max_observation_error > kReplayTolerance)
       std::fprintf(stderr, "vaegail: note: %s: the replay departs from the recorded observations by up to %.3g "
-                   "(recorded with execution noise or by another tool?)\n", r.caption.c_str(), r.max_observation_error);
+                   "(recorded with execution noise or by another tool?)\n",
+                   r.caption.substr(0, r.caption.find('\n')).c_str(), r.max_observation_error);
   std::printf("wrote %s\n", path.c_str());
 }
 
 void add_video_options(CLI::App& command, render::VideoOptions& options) {
-  command.add_option("--width", options.tile_width, "pixels across each tile (even); the video is a grid of tiles")
-      ->check(CLI::Range(16, 4096))->capture_default_str();
-  command.add_option("--height", options.tile_height, "pixels down each tile (even)")
-      ->check(CLI::Range(16, 4096))->capture_default_str();
+  // yuv420p halves the colour planes: odd sizes are refused when parsing, before any work.
+  const CLI::Validator even([](std::string& value) { return std::stoi(value) % 2 ? "must be even" : ""; }, "EVEN");
+  command.add_option("--width", options.tile_width, "pixels across each tile; the video is a grid of tiles")
+      ->check(CLI::Range(16, 4096))->check(even)->capture_default_str();
+  command.add_option("--height", options.tile_height, "pixels down each tile")
+      ->check(CLI::Range(16, 4096))->check(even)->capture_default_str();
   command.add_option("--fps", options.fps, "frames per second, one frame per control step (0: real time)")
       ->check(CLI::Range(0, 1000))->capture_default_str();
   command.add_option("--distance", options.camera.distance,

@@ -41,7 +41,7 @@ Imitator expert_imitator(const std::string& run_dir, const DemoSet& demos, const
                                                      " has no context to condition expert " + expert.spec.id + " on");
     conditions[i] = torch::tensor(expert.spec.condition_for(context[0]));
   }
-  return {"expert " + expert.spec.id, agent_mean_policy(expert.agent), conditions};
+  return {"expert", agent_mean_policy(expert.agent), conditions};
 }
 
 void run_render(const RenderFlags& f) {

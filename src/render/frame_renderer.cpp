@@ -14,14 +14,23 @@ constexpr double kFloorLineReach = 10.0;   // m either side of the look-at point
 constexpr double kDistancePerRadius = 3.0;
 constexpr int kShadowMapSize = 1024;  // pixels a side
 
-// The first body whose joint lets it translate: the root of a body that moves about; -1 when
-// every body is fixed to the world or only turns (an arm on a base).
-int translating_root(const mjModel* m) {
+// The first body with a joint: the root of what moves (an arm's first link, not its base and
+// table); 0 (the world) when nothing does.
+int moving_root(const mjModel* m) {
   for (int b = 1; b < m->nbody; ++b)
-    for (int j = m->body_jntadr[b]; j >= 0 && j < m->body_jntadr[b] + m->body_jntnum[b]; ++j)
-      if (m->jnt_type[j] == mjJNT_FREE || m->jnt_type[j] == mjJNT_SLIDE) return b;
-  return -1;
+    if (m->body_jntnum[b] > 0) return b;
+  return 0;
 }
+
+// Whether the body's joints let it translate: a body that moves about (free or slide root).
+bool translates(const mjModel* m, int body) {
+  for (int j = m->body_jntadr[body]; j >= 0 && j < m->body_jntadr[body] + m->body_jntnum[body]; ++j)
+    if (m->jnt_type[j] == mjJNT_FREE || m->jnt_type[j] == mjJNT_SLIDE) return true;
+  return false;
+}
+
+// MuJoCo's 150% font reads well from 480 pixels a tile; narrower tiles take the 100% one.
+int font_scale(const FrameLayout& layout) { return layout.tile_width >= 480 ? mjFONTSCALE_150 : mjFONTSCALE_100; }
 
 bool in_subtree(const mjModel* m, int body, int root) {
   for (; body > 0; body = m->body_parentid[body])
@@ -59,8 +68,8 @@ FrameRenderer::FrameRenderer(const mjModel* model, FrameLayout layout, CameraOpt
   // The reference pose fixes the still camera's aim and the automatic distance.
   mjData* reference = mj_makeData(model_);
   mj_forward(model_, reference);
-  tracked_body_ = translating_root(model_);
-  const int root = std::max(tracked_body_, 0);
+  const int root = moving_root(model_);
+  tracked_body_ = root > 0 && translates(model_, root) ? root : -1;
   mju_copy3(reference_center_, reference->subtree_com + 3 * root);
   const double radius = subtree_radius(model_, reference, root, reference_center_);
   mj_deleteData(reference);
@@ -78,7 +87,7 @@ FrameRenderer::FrameRenderer(const mjModel* model, FrameLayout layout, CameraOpt
   mjv_defaultScene(&scene_);
   mjv_makeScene(model_, &scene_, kMaxSceneGeoms);
   mjr_defaultContext(&context_);
-  mjr_makeContext(model_, &context_, mjFONTSCALE_150);
+  mjr_makeContext(model_, &context_, font_scale(layout));
   mjr_setBuffer(mjFB_OFFSCREEN, &context_);
   if (context_.currentBuffer != mjFB_OFFSCREEN || context_.offWidth != layout.width() ||
       context_.offHeight != layout.height()) {

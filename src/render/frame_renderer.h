@@ -2,13 +2,15 @@
 // tiles: each tile a body's state (its own mjData) seen by a camera that follows the body's
 // root, with a caption in the tile's top-left corner.
 //
-// The camera: a body that can translate (its root has a free or a slide joint: the walker, the
-// humanoid, a hopper) is tracked (the look-at point is the root subtree's centre of mass, set
-// every frame), and the model's lights move along with it so that a
-// body far from the origin stays lit. A body whose root is fixed (the arm) is watched by a still
-// camera aimed at its centre in the model's reference pose. Every plane on the world body (a floor) gets
-// lines 1 m apart near the look-at point: on a plain floor a tracked body would otherwise seem
-// to walk on the spot.
+// The camera: the root is the first body with a joint. A root that can translate (a free or
+// a slide joint: the walker, the humanoid, a hopper) is tracked: the look-at point is its
+// subtree's centre of mass, set every frame, and the model's lights move along with it so that
+// a body far from the origin stays lit. A root that only turns (the arm's first link, on a
+// fixed base) is watched by a still camera aimed at its subtree's centre in the model's
+// reference pose. The distance, unless given, is 3x the subtree's radius in that pose. Every
+// plane on the world body (a floor) gets lines 1 m apart near the look-at point: on a plain
+// floor a tracked body would otherwise seem to walk on the spot. Captions use MuJoCo's 100%
+// font below 480 pixels a tile, its 150% one from there.
 #pragma once
 
 #include <mujoco/mujoco.h>
