@@ -190,5 +190,18 @@ else
   echo "cli_test: figures through the binary skipped: no python3 with matplotlib"
 fi
 
+# ---- render: video with no display (Mesa's llvmpipe through EGL), every task kind ---------
+check_help render
+expect_error "demos.h5: no episode 500 (it has 500, from 0)" "$tmp/r.mp4" -- \
+  render --demos "$walker_demos" --episodes 500 --out "$tmp/r.mp4"
+expect_error "--width: must be even" "$tmp/r.mp4" -- render --demos "$walker_demos" --episodes 0 --width 33 --out "$tmp/r.mp4"
+expect_error "--gail needs --vae" "$tmp/r.mp4" -- render --demos "$walker_demos" --episodes 0 --gail "$tmp/g" --out "$tmp/r.mp4"
+run_in "$tmp/elsewhere" render --demos "$tmp/body.h5" --episodes 0 1 --vae "$tmp/body_vae/checkpoints/latest.pt" \
+  --gail "$tmp/body_gail" --width 64 --height 48 --out "$tmp/body.mp4"
+[ -s "$tmp/body.mp4" ] || fail "render of a body of one's own: no video"
+run_in "$tmp" render --demos "$tmp/h.h5" --episodes 0 --expert "$tmp/h/humanoid_ctx0_3_logstd-1_seed0" \
+  --width 64 --height 48 --out "$tmp/humanoid.mp4"
+[ -s "$tmp/humanoid.mp4" ] || fail "render of a humanoid demonstration and its expert: no video"
+
 echo "$helped commands answered --help; $failures failure(s)"
 [ "$failures" -eq 0 ]
