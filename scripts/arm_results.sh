@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The arm results of docs/results.md (paper section 4.1), from the published (offset-free) demonstrations and a
-# VAE trained by the README's command (its checkpoint is not in the repository).
+# The arm results of docs/results.md (paper section 4.1; defaults: the free-pose run of
+# docs/experiments/arm-imitation.md), from the offset-free demonstrations and a
+# VAE trained by scripts/reproduce/arm.sh (its checkpoint is not in the repository).
 # Usage: scripts/arm_results.sh [OUT_DIR [DEMOS.h5 VAE_RUN_DIR]]   (default results/arm, data/arm/demos.h5,
 # checkpoints/arm/vae; about 15 minutes on 2 cores)
 set -euo pipefail

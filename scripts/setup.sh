@@ -10,9 +10,13 @@ packages=(
   libmujoco-dev libqhull-dev  # MuJoCo 2.2 C API (its CMake target names qhull's headers)
   libhdf5-dev             # demonstration files
   libopenblas0-openmp     # BLAS for LibTorch: ~8x faster LSTMs than the reference BLAS
-  libcli11-dev nlohmann-json3-dev libpng-dev
+  libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
+  libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri  # render: OpenGL without display or GPU (EGL surfaceless, llvmpipe)
+  libavcodec-dev libavformat-dev libswscale-dev       # render: H.264 (libx264) in MP4
   python3-h5py python3-numpy  # tests: fixtures in the layouts of h5py, Minari and imitation
+  openmpi-bin libopenmpi-dev  # `mpirun -np K vaegail gail|experts train`: one run on K processes (util/world.h)
+  python3-matplotlib      # figures: scripts/plot/ draws the CSV files vaegail writes
 )
 
 missing=()
@@ -36,5 +40,5 @@ if [[ -e $openblas/libblas.so.3 ]] && ! readlink -f /usr/lib/x86_64-linux-gnu/li
   "${as_root[@]}" update-alternatives --set liblapack.so.3-x86_64-linux-gnu $openblas/liblapack.so.3
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DVAEGAIL_STAGES="util;env;data;rl;experts;vae;gail;eval;plot;bench;cli;controller" >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DVAEGAIL_STAGES="util;env;data;rl;experts;vae;gail;eval;render;bench;cli;controller" >/dev/null
 cmake --build build -j"$(nproc)"

@@ -26,6 +26,7 @@ std::unique_ptr<CLI::App> make_app() {
   add_plot_commands(*app);
   add_gail_commands(*app);
   add_eval_commands(*app);
+  add_render_commands(*app);  // after bench: adds `bench render`
   return app;
 }
 

@@ -2,7 +2,8 @@
 # The command line's promises, checked on the built binary (ctest runs this as `cli_test`):
 # every command and subcommand answers --help; bad input (a missing, random or truncated file,
 # a malformed CSV, a nan, wrong dimensions, an unknown flag) ends with a non-zero exit, one
-# line on stderr naming the problem, and no output file.
+# line on stderr naming the problem, and no output file; the scripts in scripts/reproduce/ call commands
+# and options that exist.
 # Usage: src/cli/cli_test.sh VAEGAIL_BINARY REPO_ROOT
 set -uo pipefail
 [ $# -eq 2 ] || { echo "usage: $0 VAEGAIL_BINARY REPO_ROOT" >&2; exit 2; }
@@ -133,6 +134,74 @@ expect_error "--config must give a 'grid' or 'grids'" "$tmp/h" -- experts train 
   "$v" demos styles --demos "$tmp/h.h5" > "$tmp/stdout" 2>&1 && grep -q "of 2 held-out episodes named right" "$tmp/stdout" ||
   fail "demos collect --task humanoid, demos styles: $(cat "$tmp/stdout")"
 expect_error "demos styles reads humanoid demonstrations" "" -- demos styles --demos "$tmp/one.h5"
+
+# ---- the reproduce scripts call commands and options that exist ------------------------
+# Every vaegail line a script prints under --dry-run names a command whose --help lists each of its options
+# (or the tool's own, such as --torch-threads), and every other program it calls is there.
+declare -A helps
+global_help=$("$v" --help 2>&1)
+for script in "$root"/scripts/reproduce/*.sh; do
+  [ -x "$script" ] || continue
+  name=$(basename "$script")
+  while read -r line; do
+    read -ra words <<< "${line#+ }"
+    if [ "${words[0]}" != build/vaegail ]; then
+      [ "${words[0]}" = cp ] || [ -x "$root/${words[0]}" ] || fail "$name calls ${words[0]}, not an executable script"
+      continue
+    fi
+    command=() i=1
+    while [ $i -lt ${#words[@]} ]; do  # the tool's options, then the command's words up to its first option
+      case ${words[i]} in --torch-threads) i=$((i + 2)); continue ;; -*|*/*|*.*) break ;; esac
+      command+=("${words[i]}")
+      i=$((i + 1))
+    done
+    key=${command[*]}
+    [ -n "${helps[$key]+x}" ] || helps[$key]=$("$v" "${command[@]}" --help 2>&1)
+    for w in "${words[@]}"; do
+      [[ $w == --* ]] || continue
+      grep -qE -- "(^|[^-[:alnum:]_])$w([^-[:alnum:]_]|$)" <<< "${helps[$key]}$global_help" ||
+        fail "$name: vaegail $key has no $w"
+    done
+  done < <("$script" --dry-run all | grep '^+ ')
+done
+
+# ---- figures (scripts/plot through the binary) ------------------------------------------
+# Without matplotlib: a figure command stops with one line naming the package; a command whose
+# main output is a table still writes it, and its figure's CSV, with one warning.
+printf '#!/bin/sh\nexit 1\n' > "$tmp/no-matplotlib" && chmod +x "$tmp/no-matplotlib"
+printf 'epoch,train_loss,val_loss\n1,10,12\n2,5,7\n' > "$tmp/metrics.csv"
+VAEGAIL_PYTHON=$tmp/no-matplotlib expect_error "plot curves: needs python3 with matplotlib (apt-get install python3-matplotlib)" \
+  "$tmp/curves.png" -- plot curves --csv "$tmp/metrics.csv" --y train_loss --out "$tmp/curves.png"
+VAEGAIL_PYTHON=$tmp/no-matplotlib "$v" data info "$tmp/one.h5" --histogram "$tmp/speeds.png" > "$tmp/stdout" 2> "$tmp/stderr" &&
+  grep -q "episodes per bin" "$tmp/stdout" && [ -s "$tmp/speeds.csv" ] && [ ! -e "$tmp/speeds.png" ] &&
+  [ "$(grep -c . "$tmp/stderr")" -eq 1 ] && grep -q "python3-matplotlib" "$tmp/stderr" ||
+  fail "data info --histogram without matplotlib: $(cat "$tmp/stderr")"
+source "$root/scripts/plot/find_python.sh"
+if [ -n "$python" ]; then
+  run_in "$tmp" plot curves --csv "$tmp/metrics.csv" --y train_loss,val_loss --log-y --out "$tmp/curves.png" --width 300 --height 200
+  [ -s "$tmp/curves.png" ] || fail "plot curves: no figure"
+  rm -f "$tmp/speeds.csv"
+  run_in "$tmp" data info "$tmp/one.h5" --histogram "$tmp/speeds.png"
+  [ -s "$tmp/speeds.png" ] && [ -s "$tmp/speeds.csv" ] || fail "data info --histogram: no figure or no CSV"
+  # the script's own one-line error, through the binary
+  expect_error "metrics.csv: no column 'nope' (columns: epoch, train_loss, val_loss)" "$tmp/c.png" -- \
+    plot curves --csv "$tmp/metrics.csv" --y nope --out "$tmp/c.png"
+else
+  echo "cli_test: figures through the binary skipped: no python3 with matplotlib"
+fi
+
+# ---- render: video with no display (Mesa's llvmpipe through EGL), every task kind ---------
+check_help render
+expect_error "demos.h5: no episode 500 (it has 500, from 0)" "$tmp/r.mp4" -- \
+  render --demos "$walker_demos" --episodes 500 --out "$tmp/r.mp4"
+expect_error "--width: must be even" "$tmp/r.mp4" -- render --demos "$walker_demos" --episodes 0 --width 33 --out "$tmp/r.mp4"
+expect_error "--gail needs --vae" "$tmp/r.mp4" -- render --demos "$walker_demos" --episodes 0 --gail "$tmp/g" --out "$tmp/r.mp4"
+run_in "$tmp/elsewhere" render --demos "$tmp/body.h5" --episodes 0 1 --vae "$tmp/body_vae/checkpoints/latest.pt" \
+  --gail "$tmp/body_gail" --width 64 --height 48 --out "$tmp/body.mp4"
+[ -s "$tmp/body.mp4" ] || fail "render of a body of one's own: no video"
+run_in "$tmp" render --demos "$tmp/h.h5" --episodes 0 --expert "$tmp/h/humanoid_ctx0_3_logstd-1_seed0" \
+  --width 64 --height 48 --out "$tmp/humanoid.mp4"
+[ -s "$tmp/humanoid.mp4" ] || fail "render of a humanoid demonstration and its expert: no video"
 
 echo "$helped commands answered --help; $failures failure(s)"
 [ "$failures" -eq 0 ]

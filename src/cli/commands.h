@@ -17,6 +17,7 @@ void add_gail_commands(CLI::App& app);  // gail train, bc train
 void add_eval_commands(CLI::App& app);  // eval walker, eval arm
 void add_eval_arm(CLI::App& eval);
 void add_eval_body(CLI::App& eval);
+void add_render_commands(CLI::App& app);  // render, bench render
 
 struct TaskOptions;
 // Flags every command that simulates shares: which task, and how episodes end.

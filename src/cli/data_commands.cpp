@@ -4,10 +4,11 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/figures.h"
 #include "cli/task_options.h"
 #include "data/demo_stats.h"
 #include "data/foreign_demos.h"
-#include "plot/charts.h"
+#include "util/histogram.h"
 
 namespace vaegail::cli {
 namespace {
@@ -32,7 +33,7 @@ std::string context_label(const std::vector<double>& context, const std::vector<
 
 // Each episode's mean of `feature`: the recorded attribute mean_<feature> when there is one
 // (the recorder stores it), else computed from the per-step features. One series per context.
-std::vector<plot::HistogramSeries> episode_means_by_context(const DemoSet& set, const std::string& feature) {
+std::vector<HistogramSeries> episode_means_by_context(const DemoSet& set, const std::string& feature) {
   const auto& names = set.header.feature_names;
   const int nf = static_cast<int>(names.size());
   int f = -1;
@@ -52,7 +53,7 @@ std::vector<plot::HistogramSeries> episode_means_by_context(const DemoSet& set, 
                                               ? attribute->second
                                               : episode.mean_feature(f, nf));
   }
-  std::vector<plot::HistogramSeries> series;
+  std::vector<HistogramSeries> series;
   for (auto& [context, means] : by_context)
     series.push_back({context_label(context, set.header.context_names), std::move(means)});
   return series;
@@ -61,16 +62,16 @@ std::vector<plot::HistogramSeries> episode_means_by_context(const DemoSet& set, 
 void run_info(const InfoOptions& o) {
   const DemoSet set = read_demos(o.path);
   // Checked before anything is printed, so a bad --feature gives only the error.
-  const auto series = o.histogram.empty() ? std::vector<plot::HistogramSeries>{}
+  const auto series = o.histogram.empty() ? std::vector<HistogramSeries>{}
                                           : episode_means_by_context(set, o.feature);
   std::fputs(format_summary(set, summarize(set)).c_str(), stdout);
   if (o.histogram.empty()) return;
-  const auto edges = plot::even_bin_edges(series, o.bins);
+  const auto edges = even_bin_edges(series, o.bins);
   const std::string what = "episode mean " + o.feature;
   std::printf("\ndistribution of %s (episodes per bin)\n", what.c_str());
-  std::fputs(plot::histogram_table(edges, series).c_str(), stdout);
-  plot::histogram_chart({"distribution of " + what, what, "episodes"}, edges, series).save_png(o.histogram);
-  std::printf("wrote %s\n", o.histogram.c_str());
+  std::fputs(histogram_table(edges, series).c_str(), stdout);
+  const bool drawn = save_histogram_figure(o.histogram, series, o.bins, {"distribution of " + what, what, "episodes"});
+  std::printf("wrote %s%s\n", drawn ? (o.histogram + " and ").c_str() : "", figure_data_path(o.histogram).c_str());
 }
 
 struct ImportOptions {

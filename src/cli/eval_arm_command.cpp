@@ -15,6 +15,8 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/figures.h"
+#include "cli/imitation_video.h"
 #include "cli/task_options.h"
 #include "eval/arm_eval.h"
 #include "eval/walker_eval.h"
@@ -38,7 +40,12 @@ struct EvalArmFlags {
   bool joint_blend = false;
   vae::ImitationOptions rollout;
   vae::RefineOptions refine{0, 0.05, 64};  // 0 steps: the encoder's mean, as the paper
+  int videos = 0;
+  render::VideoOptions video;
 };
+
+// The paper's Figure 3 blend weights.
+const std::vector<double> kAlphas{0.0, 0.25, 0.5, 0.75, 1.0};
 
 // z of each episode (by index into the episodes), and where it came from, for the report.
 class Embeddings {
@@ -162,6 +169,38 @@ std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pa
   return text + by_length + "\n";
 }
 
+// STEM.csv (scripts/plot/paths.py's columns), and STEM.png drawn from it when matplotlib is there.
+void draw_paths(const std::string& stem, const std::string& csv, const std::string& title, const std::string& colormap) {
+  write_file_atomically(stem + ".csv", csv);
+  draw_figure_if_possible("paths.py", {"--csv", stem + ".csv", "--colormap", colormap, "--title", title, "--xlabel",
+                                       "grip x (m)", "--ylabel", "grip y (m)", "--out", stem + ".png"});
+}
+
+// --videos N: the first N pairs, each as one row: demonstration a, the policy at every blend of
+// their z (from a's start, as the measurement), demonstration b.
+void write_interpolation_videos(const Env& env, const DemoSet& demos, const std::vector<std::pair<int64_t, int64_t>>& pairs,
+                                const Embeddings& z, const vae::LatentPolicy& policy, const EvalArmFlags& f) {
+  const std::string dir = f.out_dir + "/videos";
+  fs::create_directories(dir);
+  for (size_t p = 0; p < std::min<size_t>(f.videos, pairs.size()); ++p) {
+    const auto [a, b] = pairs[p];
+    std::vector<torch::Tensor> blends;
+    std::vector<std::string> captions;
+    for (double alpha : kAlphas) {
+      blends.push_back((1 - alpha) * z.of({a})[0] + alpha * z.of({b})[0]);
+      char caption[32];
+      std::snprintf(caption, sizeof caption, "alpha %.2f", alpha);
+      captions.push_back(caption);
+    }
+    std::vector<render::Clip> row{demo_clip(demos, a)};
+    const std::vector<int64_t> starts(kAlphas.size(), a);
+    for (auto& clip : rollout_clips(env, vae::rollout_starts(demos, starts), torch::stack(blends), policy, captions))
+      row.push_back(std::move(clip));
+    row.push_back(demo_clip(demos, b));
+    write_video(env, {row}, f.video, dir + "/interpolation_pair_" + std::to_string(p) + ".mp4");
+  }
+}
+
 void run_eval_arm(const EvalArmFlags& f) {
   torch::NoGradGuard no_grad;
   const auto device = parse_device(f.device);
@@ -195,8 +234,8 @@ void run_eval_arm(const EvalArmFlags& f) {
   Progress progress("eval arm", static_cast<std::int64_t>(episodes.size()), "rollouts");
   const auto rows = eval::imitate_reaches(*env, demos, episodes, z.of(episodes), policy, f.rollout, &progress);
   progress.finish();
-  const auto interpolations = eval::interpolate_reaches(*env, demos, pairs, z.of(a), z.of(b),
-                                                        {0.0, 0.25, 0.5, 0.75, 1.0}, policy, f.rollout);
+  const auto interpolations = eval::interpolate_reaches(*env, demos, pairs, z.of(a), z.of(b), kAlphas, policy,
+                                                        f.rollout);
 
   fs::create_directories(f.out_dir);
   const std::string table =
@@ -220,13 +259,15 @@ void run_eval_arm(const EvalArmFlags& f) {
       seen[r.expert_id] = true;
       drawn.push_back(r);
     }
-  eval::reach_paths_chart(drawn, "test demos (solid), imitations (dashed)")
-      .save_png(f.out_dir + "/reach_paths.png");
+  draw_paths(f.out_dir + "/reach_paths", eval::reach_paths_csv(drawn), "test demos (solid), imitations (dashed)",
+             "tab10");
   for (int p = 0; p < std::min<int>(f.drawn_pairs, interpolations.size()); ++p)
-    eval::interpolation_chart(interpolations[p], demos, "latent interpolation, pair " + std::to_string(p))
-        .save_png(f.out_dir + "/interpolation_pair_" + std::to_string(p) + ".png");
-  std::printf("\n%s\nwrote %s/{reaches.csv, interpolation.csv, summary.md, reach_paths.png, interpolation_pair_*.png}\n",
-              table.c_str(), f.out_dir.c_str());
+    draw_paths(f.out_dir + "/interpolation_pair_" + std::to_string(p),
+               eval::interpolation_paths_csv(interpolations[p], demos),
+               "latent interpolation, pair " + std::to_string(p), "viridis");
+  std::printf("\n%s\nwrote %s/{reaches.csv, interpolation.csv, summary.md, reach_paths.{csv,png}, "
+              "interpolation_pair_*.{csv,png}}\n", table.c_str(), f.out_dir.c_str());
+  if (f.videos > 0) write_interpolation_videos(*env, demos, pairs, z, policy, f);
 }
 
 }  // namespace
@@ -254,6 +295,10 @@ void add_eval_arm(CLI::App& eval) {
   auto* refine = add_refine_options(*c, f->refine, "each demonstration's z");
   blend->excludes(refine);
   c->add_option("--envs", f->rollout.num_envs, "environments stepped together")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  c->add_option("--videos", f->videos, "also write this many MP4s to OUT_DIR/videos, one per interpolated pair: "
+                                       "demonstration a, a tile per blend weight, demonstration b")
+      ->check(CLI::Range(0, 1 << 20))->capture_default_str();
+  add_video_options(*c, f->video);
   add_device_option(*c, f->device);
   c->callback([f] { run_eval_arm(*f); });
 }

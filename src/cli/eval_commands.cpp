@@ -9,12 +9,14 @@
 
 #include "cli/commands.h"
 #include "cli/eval_policies.h"
+#include "cli/figures.h"
+#include "cli/imitation_video.h"
 #include "cli/task_options.h"
 #include "eval/walker_eval.h"
 #include "gail/behavior_cloning.h"
 #include "gail/diverse_gail.h"
-#include "plot/charts.h"
 #include "util/atomic_file.h"
+#include "util/histogram.h"
 #include "util/progress.h"
 #include "vae/vae_trainer.h"
 
@@ -28,6 +30,8 @@ struct EvalWalkerFlags {
   std::string demos, vae, gail, plain, bc, out_dir, device = "cpu";
   int per_expert = 11;
   vae::ImitationOptions rollout;
+  int videos = 0;
+  render::VideoOptions video;
 };
 
 std::vector<double> column(const std::vector<eval::ImitationRow>& rows, const std::string& policy, bool held_out,
@@ -38,22 +42,37 @@ std::vector<double> column(const std::vector<eval::ImitationRow>& rows, const st
   return out;
 }
 
-void save_histogram(const std::string& path, const plot::Labels& labels,
-                    const std::vector<plot::HistogramSeries>& series) {
-  std::vector<plot::HistogramSeries> drawn;
+// The series' values as FIGURE.csv, their counts printed, and the figure drawn when matplotlib is there.
+void save_histogram(const std::string& figure, const FigureLabels& labels, const std::vector<HistogramSeries>& series) {
+  std::vector<HistogramSeries> drawn;
   for (const auto& s : series)
     if (!s.values.empty()) drawn.push_back(s);
   if (drawn.empty()) return;
-  const auto edges = plot::even_bin_edges(drawn, 30);
-  plot::histogram_chart(labels, edges, drawn).save_png(path);
-  std::printf("\n%s\n%s", labels.title.c_str(), plot::histogram_table(edges, drawn).c_str());
+  const int bins = 30;
+  std::printf("\n%s\n%s", labels.title.c_str(), histogram_table(even_bin_edges(drawn, bins), drawn).c_str());
+  save_histogram_figure(figure, drawn, bins, labels);
+}
+
+// --videos N: N of the imitated demonstrations, spread evenly over them (so over the experts),
+// each beside every policy's imitation from its start.
+void write_videos(const Env& env, const DemoSet& demos, const std::vector<int64_t>& episodes, const torch::Tensor& z,
+                  const std::vector<eval::NamedPolicy>& policies, const EvalWalkerFlags& f) {
+  const std::string dir = f.out_dir + "/videos";
+  fs::create_directories(dir);
+  const size_t n = std::min<size_t>(f.videos, episodes.size());
+  for (size_t k = 0; k < n; ++k) {
+    const size_t i = k * episodes.size() / n;
+    const auto grid = imitation_grid(env, demos, {episodes[i]}, imitators(policies, z.narrow(0, i, 1)));
+    write_video(env, grid, f.video, dir + "/demo_" + std::to_string(episodes[i]) + ".mp4");
+  }
 }
 
 }  // namespace
 
 std::vector<eval::NamedPolicy> load_policies(const vae::TrajectoryVae& model, const Env& env, const PolicyRuns& runs,
                                              torch::Device device) {
-  std::vector<eval::NamedPolicy> policies{{"vae", vae::vae_mean_policy(model, device)}};
+  std::vector<eval::NamedPolicy> policies;
+  if (model) policies.push_back({"vae", vae::vae_mean_policy(model, device)});
   if (!runs.gail.empty())
     policies.push_back({"diverse_gail", agent_mean_policy(load_gail_agent(runs.gail, env.obs_dim(), env.act_dim(),
                                                                           model, device))});
@@ -103,18 +122,19 @@ void run_eval_walker(const EvalWalkerFlags& f) {
   const auto achieved = [](const eval::ImitationRow& r) { return r.achieved_speed; };
   const auto demo = [](const eval::ImitationRow& r) { return r.demo_speed; };
   for (const bool held_out : {false, true}) {
-    std::vector<plot::HistogramSeries> errors;
+    std::vector<HistogramSeries> errors;
     for (const auto& p : policies) errors.push_back({p.name, column(rows, p.name, held_out, abs_diff)});
     const std::string which = held_out ? "one-shot (held out)" : "training experts";
     save_histogram(f.out_dir + (held_out ? "/speed_difference_held_out.png" : "/speed_difference.png"),
                    {"|demo - imitation speed|, " + which, "m/s", "demonstrations"}, errors);
   }
-  std::vector<plot::HistogramSeries> speeds{{"demonstrations", column(rows, "vae", false, demo)}};
+  std::vector<HistogramSeries> speeds{{"demonstrations", column(rows, "vae", false, demo)}};
   for (const auto& p : policies) speeds.push_back({p.name, column(rows, p.name, false, achieved)});
   save_histogram(f.out_dir + "/speeds.png", {"average speed: demonstrations and imitations", "m/s", "episodes"},
                  speeds);
-  std::printf("\n%s\nwrote %s/{imitation.csv, summary.md, speed_difference.png, speed_difference_held_out.png, "
-              "speeds.png}\n", table.c_str(), f.out_dir.c_str());
+  std::printf("\n%s\nwrote %s/{imitation.csv, summary.md, speed_difference, speed_difference_held_out, speeds}"
+              ".{csv,png}\n", table.c_str(), f.out_dir.c_str());
+  if (f.videos > 0) write_videos(*env, demos, episodes, z, policies, f);
 }
 
 void add_eval_walker(CLI::App& eval) {
@@ -132,6 +152,10 @@ void add_eval_walker(CLI::App& eval) {
   c->add_option("--out-dir", f->out_dir, "where the CSV, the table and the PNGs go")->required();
   c->add_option("--envs", f->rollout.num_envs, "environments stepped together")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  c->add_option("--videos", f->videos, "also write this many MP4s to OUT_DIR/videos: a demonstration beside each "
+                                       "policy's imitation")
+      ->check(CLI::Range(0, 1 << 20))->capture_default_str();
+  add_video_options(*c, f->video);
   add_device_option(*c, f->device);
   c->callback([f] { run_eval_walker(*f); });
 }

@@ -1,5 +1,6 @@
-// The policies the evaluations compare: the VAE policy's mean action and, when their run
-// directories are given, the diverse-GAIL, plain-GAIL and behaviour-cloning policies.
+// The policies the evaluations compare: the VAE policy's mean action (when `model` is not
+// empty) and, when their run directories are given, the diverse-GAIL (which needs the VAE),
+// plain-GAIL and behaviour-cloning policies.
 #pragma once
 
 #include <torch/torch.h>

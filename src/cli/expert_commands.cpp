@@ -340,7 +340,7 @@ void run_styles(const std::string& path) {
     }
     std::printf("\n");
   }
-  std::printf("%.1f%% of %d held-out episodes named right (nearest centroid on %zu gait statistics; the bar: 90%%)\n",
+  std::printf("%.1f%% of %d held-out episodes named right (nearest centroid on %zu gait statistics)\n",
               100 * accuracy(confusion), named_episodes, kGaitStatistics.size());
 }
 

@@ -14,7 +14,9 @@
 #include "gail/behavior_cloning.h"
 #include "gail/diverse_gail.h"
 #include "gail/gail_bench.h"
+#include "util/atomic_file.h"
 #include "util/progress.h"
+#include "util/world.h"
 #include "vae/vae_trainer.h"
 
 namespace vaegail::cli {
@@ -145,6 +147,7 @@ void add_bc_train(CLI::App& bc) {
 struct GailBenchFlags {
   GailFlags gail;
   GailBenchOptions bench;
+  std::string json;
 };
 
 void add_bench_gail(CLI::App& bench) {
@@ -159,6 +162,7 @@ void add_bench_gail(CLI::App& bench) {
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   c->add_option("--physics-seconds", f->bench.physics_seconds, "measuring time per physics ceiling")
       ->check(CLI::Range(0.1, 3600.0))->capture_default_str();
+  c->add_option("--json", f->json, "also write the figures to this JSON file (scripts/bench/gail_ranks.sh reads it)");
   c->callback([f] {
     GailFlags flags = f->gail;
     if (flags.mode == "diverse" && flags.vae.empty()) flags.vae = kPublishedWalkerVae;
@@ -167,7 +171,10 @@ void add_bench_gail(CLI::App& bench) {
     GailBenchOptions options = f->bench;
     options.gail = flags.options;
     options.env = demo_env_request(demos);
-    std::fputs(format_gail_bench(options, run_gail_bench(options, demos, model)).c_str(), stdout);
+    const GailBenchResult result = run_gail_bench(options, demos, model);
+    std::fputs(format_gail_bench(options, result).c_str(), stdout);
+    if (!f->json.empty() && World::get().is_root())
+      write_file_atomically(f->json, gail_bench_json(options, result).dump(2) + "\n");
   });
 }
 

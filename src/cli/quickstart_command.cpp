@@ -22,6 +22,7 @@ struct QuickstartOptions {
   int bc_epochs = 5;
   int per_expert = 3;
   int envs = 8;
+  int video_episode = 260;  // 1 m/s: the published VAE and diverse GAIL both stay up on it
 };
 
 void section(const char* title) { std::printf("\n== %s ==\n", title); }
@@ -72,6 +73,10 @@ void run_quickstart(const QuickstartOptions& o) {
   run_command_line("eval walker" + demos + vae + " --gail " + o.out_dir + "/diverse_gail --plain " + o.out_dir +
                    "/plain_gail --bc " + o.out_dir + "/bc --per-expert " + std::to_string(o.per_expert) + envs +
                    " --out-dir " + o.out_dir + "/eval");
+
+  section("7. see it: a demonstration beside its VAE and fine-tuned imitations (headless rendering)");
+  run_command_line("render" + demos + " --episodes " + std::to_string(o.video_episode) + vae + " --gail " + o.out_dir +
+                   "/diverse_gail --out " + o.out_dir + "/walker.mp4");
   std::printf("\nquickstart done: outputs in %s\n", o.out_dir.c_str());
 }
 
@@ -93,6 +98,8 @@ void add_quickstart_command(CLI::App& app) {
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   cmd->add_option("--envs", o->envs, "environments for GAIL rollouts and the evaluation")
       ->check(CLI::Range(1, 1 << 16))->capture_default_str();
+  cmd->add_option("--video-episode", o->video_episode, "the demonstration in walker.mp4 (an episode index)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
   cmd->callback([o] { run_quickstart(*o); });
 }
 

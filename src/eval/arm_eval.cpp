@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "env/arm.h"
-#include "plot/charts.h"
 #include "vae/demo_dataset.h"
 
 namespace vaegail::eval {
@@ -15,16 +14,14 @@ namespace {
 
 void write_point(std::ostringstream& out, const Point3& p) { out << ',' << p[0] << ',' << p[1] << ',' << p[2]; }
 
-plot::PathSeries top_view(const std::string& name, const std::vector<Point3>& path, plot::Rgb color, bool dashed) {
-  plot::PathSeries s;
-  s.name = name;
-  for (const auto& p : path) {
-    s.x.push_back(p[0]);
-    s.y.push_back(p[1]);
-  }
-  s.color = color;
-  s.dashed = dashed;
-  return s;
+const char* kPathsHeader = "path,group,label,style,x,y\n";
+
+// One path's rows in scripts/plot/paths.py's CSV: the grip seen from above.
+void write_top_view(std::ostringstream& out, size_t id, const std::string& group, const std::string& label,
+                    bool dashed, const std::vector<Point3>& path) {
+  for (const auto& p : path)
+    out << id << ',' << group << ',' << label << ',' << (dashed ? "dashed" : "solid") << ',' << p[0] << ',' << p[1]
+        << '\n';
 }
 
 }  // namespace
@@ -184,28 +181,29 @@ std::string interpolation_csv(const std::vector<InterpolationPair>& pairs) {
   return out.str();
 }
 
-plot::Canvas reach_paths_chart(const std::vector<ReachRow>& rows, const std::string& title) {
-  const auto colors = plot::series_colors(static_cast<int>(rows.size()));
-  std::vector<plot::PathSeries> paths;
+std::string reach_paths_csv(const std::vector<ReachRow>& rows) {
+  std::ostringstream out;
+  out << kPathsHeader;
   for (size_t i = 0; i < rows.size(); ++i) {
-    paths.push_back(top_view(i ? "" : "demonstration", rows[i].demo_path, colors[i], false));
-    paths.push_back(top_view(i ? "" : "VAE imitation (dashed)", rows[i].imitation_path, colors[i], true));
+    write_top_view(out, 2 * i, std::to_string(i), i ? "" : "demonstration", false, rows[i].demo_path);
+    write_top_view(out, 2 * i + 1, std::to_string(i), i ? "" : "imitation (dashed)", true, rows[i].imitation_path);
   }
-  return plot::path_chart({title, "grip x (m)", "grip y (m)"}, paths);
+  return out.str();
 }
 
-plot::Canvas interpolation_chart(const InterpolationPair& pair, const DemoSet& demos, const std::string& title) {
-  std::vector<plot::PathSeries> paths;
-  const auto a = grip_path(demos.episodes.at(pair.episode_a), demos.header.feature_names);
-  const auto b = grip_path(demos.episodes.at(pair.episode_b), demos.header.feature_names);
-  paths.push_back(top_view("demonstration a", a, plot::viridis(0.0), false));
-  paths.push_back(top_view("demonstration b", b, plot::viridis(1.0), false));
+std::string interpolation_paths_csv(const InterpolationPair& pair, const DemoSet& demos) {
+  std::ostringstream out;
+  out << kPathsHeader;
+  write_top_view(out, 0, "0", "demonstration a", false, grip_path(demos.episodes.at(pair.episode_a),
+                                                                  demos.header.feature_names));
+  write_top_view(out, 1, "1", "demonstration b", false, grip_path(demos.episodes.at(pair.episode_b),
+                                                                  demos.header.feature_names));
   for (size_t k = 0; k < pair.alphas.size(); ++k) {
-    char name[32];
-    std::snprintf(name, sizeof name, "alpha %.2f", pair.alphas[k]);
-    paths.push_back(top_view(name, pair.paths[k], plot::viridis(pair.alphas[k]), true));
+    char alpha[32];
+    std::snprintf(alpha, sizeof alpha, "%.2f", pair.alphas[k]);
+    write_top_view(out, k + 2, alpha, std::string("alpha ") + alpha, true, pair.paths[k]);
   }
-  return plot::path_chart({title, "grip x (m)", "grip y (m)"}, paths);
+  return out.str();
 }
 
 }  // namespace vaegail::eval

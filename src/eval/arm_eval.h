@@ -20,7 +20,6 @@
 
 #include "data/demos.h"
 #include "env/env.h"
-#include "plot/canvas.h"
 #include "vae/imitation.h"
 
 namespace vaegail::eval {
@@ -89,10 +88,11 @@ std::vector<InterpolationPair> interpolate_reaches(const Env& prototype, const D
 std::string reach_rows_csv(const std::vector<ReachRow>& rows);
 std::string interpolation_csv(const std::vector<InterpolationPair>& pairs);
 
-// Figure 2: demonstration (solid) and imitation (dashed) paths seen from above, the two of a
-// row in the same colour. Figure 3's counterpart: a pair's paths for every alpha, coloured
-// from a (α = 0) to b (α = 1), demonstrations solid.
-plot::Canvas reach_paths_chart(const std::vector<ReachRow>& rows, const std::string& title);
-plot::Canvas interpolation_chart(const InterpolationPair& pair, const DemoSet& demos, const std::string& title);
+// The figures' data, for scripts/plot/paths.py (columns path, group, label, style, x, y; the grip
+// seen from above). Figure 2: demonstration (solid) and imitation (dashed) paths, the two of a
+// row in one group (colour). Figure 3's counterpart: a pair's demonstrations (solid, groups 0 and
+// 1) and its rollouts for every alpha (dashed, group α), for the viridis colour map.
+std::string reach_paths_csv(const std::vector<ReachRow>& rows);
+std::string interpolation_paths_csv(const InterpolationPair& pair, const DemoSet& demos);
 
 }  // namespace vaegail::eval

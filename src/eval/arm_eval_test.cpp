@@ -87,7 +87,11 @@ TEST(ArmEval, ImitationWithTheDemonstratorsCommandEndsWhereTheDemonstrationDid) 
   EXPECT_GT(rows[1].final_distance(), 0.2);  // pose A's end is far from pose B's
   const std::string csv = reach_rows_csv(rows);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
-  EXPECT_GT(reach_paths_chart(rows, "two").width(), 0);
+  // The figure's data: per row a solid demonstration and a dashed imitation path, one colour group.
+  const std::string paths = reach_paths_csv(rows);
+  EXPECT_EQ(std::count(paths.begin(), paths.end(), '\n'), 1 + 4 * 51);
+  EXPECT_EQ(paths.rfind("path,group,label,style,x,y\n0,0,demonstration,solid,", 0), 0u);
+  EXPECT_NE(paths.find("\n3,1,,dashed,"), std::string::npos);
 }
 
 TEST(ArmEval, InterpolationEndsAtTheTwoDemonstrationsAndMovesBetweenThem) {
@@ -107,7 +111,11 @@ TEST(ArmEval, InterpolationEndsAtTheTwoDemonstrationsAndMovesBetweenThem) {
   EXPECT_EQ(p.paths.size(), 5u);
   const std::string csv = interpolation_csv(pairs);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6);
-  EXPECT_GT(interpolation_chart(p, demos, "pair").width(), 0);
+  // The figure's data: both demonstrations (groups 0 and 1), then one dashed path per alpha.
+  const std::string paths = interpolation_paths_csv(p, demos);
+  EXPECT_EQ(std::count(paths.begin(), paths.end(), '\n'), 1 + 7 * 51);
+  EXPECT_NE(paths.find("\n1,1,demonstration b,solid,"), std::string::npos);
+  EXPECT_NE(paths.find("\n4,0.50,alpha 0.50,dashed,"), std::string::npos);
 }
 
 }  // namespace

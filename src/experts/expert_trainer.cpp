@@ -8,6 +8,7 @@
 #include "env/registry.h"
 #include "env/vec_env.h"
 #include "env/walker.h"
+#include "rl/distributed.h"
 #include "rl/rollout.h"
 #include "rl/update_batch.h"
 #include "util/atomic_file.h"
@@ -15,6 +16,7 @@
 #include "util/json_file.h"
 #include "util/malloc_tuning.h"
 #include "util/rng.h"
+#include "util/world.h"
 
 namespace vaegail {
 
@@ -130,31 +132,40 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
                   const std::function<void(std::int64_t)>& progress) {
   auto prototype = make_expert_env(spec, options.posture_cost);  // checks the spec before touching run_dir
   retain_freed_memory();  // the rollout buffers and minibatch activations come back every iteration
-  fs::create_directories(run_dir);
+  // Under mpirun every rank steps its share of the environments (rl/distributed.h); rank 0
+  // alone writes the run directory, the others read it once rank 0 has set it up.
+  const World& world = World::get();
+  const EnvSlice slice = EnvSlice::of_world(options.num_envs);
   const std::string spec_path = run_dir + "/spec.json";
   if (fs::exists(spec_path)) {
     const ExpertSpec existing = read_json_file(spec_path).get<ExpertSpec>();
     if (existing.id != spec.id)
       throw std::runtime_error(run_dir + " holds expert " + existing.id + ", not " + spec.id);
-  } else {
-    write_file_atomically(spec_path, nlohmann::json(spec).dump(2));
   }
-  write_file_atomically(run_dir + "/options.json", nlohmann::json(options).dump(2));
+  world.barrier();  // every rank has read what was there before rank 0 writes
+  if (world.is_root()) {
+    fs::create_directories(run_dir);
+    if (!fs::exists(spec_path)) write_file_atomically(spec_path, nlohmann::json(spec).dump(2));
+    write_file_atomically(run_dir + "/options.json", nlohmann::json(options).dump(2));
+  }
 
   auto agent = make_expert_agent(spec, options, prototype->obs_dim(), prototype->act_dim());
   RunState state = read_state(run_dir);
   if (state.iteration > 0) agent->load_checkpoint(run_dir + "/agent.pt");
   if (state.steps >= options.total_steps) return;
 
-  VecEnv envs(*prototype, options.num_envs, options.env_threads);
-  // Streams restart from the iteration count, so a resumed run is reproducible too.
-  Rng target_rng(derive_seed(spec.seed, 1000 + state.iteration));
-  EpisodeStartFn choose_target = [&](int, Env& env) -> std::vector<float> {
-    const double target = spec.targets[target_rng.next() % spec.targets.size()];
+  VecEnv envs(*prototype, slice.count, options.env_threads);
+  // Streams restart from the iteration count, so a resumed run is reproducible too; each of the
+  // run's environments draws its targets from its own, whichever rank steps it.
+  std::vector<Rng> target_rngs;
+  for (int i = 0; i < slice.count; ++i) target_rngs.emplace_back(derive_seed(derive_seed(spec.seed, 1000 + state.iteration), slice.first + i));
+  EpisodeStartFn choose_target = [&](int env_index, Env& env) -> std::vector<float> {
+    const double target = spec.targets[target_rngs[env_index].next() % spec.targets.size()];
     env.set_context({target});
     return spec.condition_for(target);
   };
-  RolloutCollector collector(envs, agent, derive_seed(spec.seed, state.iteration), choose_target);
+  RolloutCollector collector(envs, agent, derive_seed(spec.seed, state.iteration), choose_target,
+                             std::make_shared<EnvReward>(), slice);
   PpoOptions ppo_options;
   ppo_options.learning_rate = options.learning_rate;
   ppo_options.epochs = options.epochs;
@@ -162,30 +173,37 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
   ppo_options.target_kl = options.target_kl;
   ppo_options.seed = derive_seed(spec.seed, 2000 + state.iteration);
   Ppo ppo(agent->policy_ptr(), agent->critic_ptr(), ppo_options);
-  CsvLog log(run_dir + "/metrics.csv",
-             {"iteration", "steps", "episodes", "mean_return", "mean_length", "fall_rate", "speed_error",
-              "approx_kl", "entropy", "value_loss", "seconds"});
+  std::unique_ptr<CsvLog> log;
+  if (world.is_root())
+    log = std::make_unique<CsvLog>(run_dir + "/metrics.csv",
+                                   std::vector<std::string>{"iteration", "steps", "episodes", "mean_return",
+                                                            "mean_length", "fall_rate", "speed_error", "approx_kl",
+                                                            "entropy", "value_loss", "seconds"});
   const auto start = std::chrono::steady_clock::now();
   const double seconds_before = state.seconds;
 
   while (state.steps < options.total_steps) {
     const Rollout rollout = collector.collect(options.steps_per_env);
-    const PpoStats stats = ppo.update(make_update_batch(rollout, options.gamma, options.lambda));
+    const PpoStats stats = ppo.update(make_update_batch(rollout, options.gamma, options.lambda, slice));
     state.steps += static_cast<std::int64_t>(options.steps_per_env) * options.num_envs;
     ++state.iteration;
     state.seconds = seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    double returns = 0, lengths = 0, falls = 0;
+    // The run's episodes: this rank's sums, added over the ranks.
+    std::vector<double> sums = {static_cast<double>(rollout.episodes.size()), 0, 0, 0};
     for (const auto& e : rollout.episodes) {
-      returns += e.env_return;
-      lengths += e.length;
-      falls += e.terminated;
+      sums[1] += e.env_return;
+      sums[2] += e.length;
+      sums[3] += e.terminated;
     }
-    const double n = std::max<size_t>(rollout.episodes.size(), 1);
-    log.write({double(state.iteration), double(state.steps), double(rollout.episodes.size()), returns / n,
-               lengths / n, falls / n, speed_error(rollout, spec, *prototype), stats.approx_kl, stats.entropy,
-               stats.value_loss, state.seconds});
+    world.sum(sums.data(), static_cast<std::int64_t>(sums.size()));
+    const double speed = all_sum(speed_error(rollout, spec, *prototype)) / world.size();
+    const double n = std::max(sums[0], 1.0);
     state.done = state.steps >= options.total_steps;
-    if (state.done || state.iteration % options.checkpoint_every == 0) save(*agent, state, run_dir);
+    if (world.is_root()) {
+      log->write({double(state.iteration), double(state.steps), sums[0], sums[1] / n, sums[2] / n, sums[3] / n,
+                  speed, stats.approx_kl, stats.entropy, stats.value_loss, state.seconds});
+      if (state.done || state.iteration % options.checkpoint_every == 0) save(*agent, state, run_dir);
+    }
     if (progress) progress(state.steps);
   }
 }

@@ -29,15 +29,18 @@ torch::Tensor selected_indices(const std::vector<int>& indices, int obs_dim) {
 }
 
 // Binary cross-entropy from logits, labels 1 for demos and 0 for the policy, in the stable
-// softplus form: -log σ(l) = softplus(-l), -log(1 - σ(l)) = softplus(l).
-torch::Tensor bce(const torch::Tensor& demo_logits, const torch::Tensor& policy_logits) {
-  return torch::softplus(-demo_logits).mean() + torch::softplus(policy_logits).mean();
+// softplus form: -log σ(l) = softplus(-l), -log(1 - σ(l)) = softplus(l). Each side's mean is over
+// `count` pairs, of which these logits may be one rank's share (rl/distributed.h).
+torch::Tensor bce(const torch::Tensor& demo_logits, const torch::Tensor& policy_logits, int64_t count) {
+  return (torch::softplus(-demo_logits).sum() + torch::softplus(policy_logits).sum()) / count;
 }
 
-DiscriminatorStats stats_of(const torch::Tensor& loss, const torch::Tensor& demo_logits,
-                            const torch::Tensor& policy_logits) {
-  return {loss.item<double>(), (demo_logits > 0).to(torch::kFloat64).mean().item<double>(),
-          (policy_logits < 0).to(torch::kFloat64).mean().item<double>()};
+// Summed over the ranks: the run's loss and accuracies.
+DiscriminatorStats stats_of(const torch::Tensor& demo_logits, const torch::Tensor& policy_logits, int64_t count) {
+  const auto sums = all_sum(torch::stack({bce(demo_logits, policy_logits, count).to(torch::kFloat64),
+                                          (demo_logits > 0).to(torch::kFloat64).sum() / count,
+                                          (policy_logits < 0).to(torch::kFloat64).sum() / count}));
+  return {sums[0].item<double>(), sums[1].item<double>(), sums[2].item<double>()};
 }
 
 }  // namespace
@@ -82,10 +85,10 @@ torch::Tensor Discriminator::forward(const torch::Tensor& observations, const to
 }
 
 DiscriminatorStats evaluate_discriminator(Discriminator& discriminator, const DiscriminatorData& demos,
-                                          const DiscriminatorData& policy) {
+                                          const DiscriminatorData& policy, int64_t global_count) {
   torch::NoGradGuard no_grad;
   const auto demo_logits = discriminator.forward(demos), policy_logits = discriminator.forward(policy);
-  return stats_of(bce(demo_logits, policy_logits), demo_logits, policy_logits);
+  return stats_of(demo_logits, policy_logits, global_count > 0 ? global_count : policy.size());
 }
 
 DiscriminatorTrainer::DiscriminatorTrainer(std::shared_ptr<Discriminator> discriminator, double learning_rate)
@@ -93,24 +96,30 @@ DiscriminatorTrainer::DiscriminatorTrainer(std::shared_ptr<Discriminator> discri
       optimizer_(discriminator_->parameters(), torch::optim::AdamOptions(learning_rate)) {}
 
 DiscriminatorStats DiscriminatorTrainer::train(const DiscriminatorData& demos, const DiscriminatorData& policy,
-                                               int steps, int minibatches, at::Generator& generator) {
+                                               int steps, int minibatches, at::Generator& generator,
+                                               const RowSlice& rows) {
   if (minibatches < 1) throw std::invalid_argument("DiscriminatorTrainer: minibatches must be positive");
   if (demos.size() != policy.size())
     throw std::invalid_argument("DiscriminatorTrainer: one demonstration sample per policy sample");
-  const DiscriminatorStats before = evaluate_discriminator(*discriminator_, demos, policy);
-  const int64_t n = policy.size(), batch = std::max<int64_t>(n / minibatches, 1);
-  const auto order = minibatches > 1 ? torch::randperm(n, generator, torch::kLong).to(policy.observations.device())
-                                     : torch::Tensor();
-  const auto take = [&](const DiscriminatorData& d, const torch::Tensor& rows) {
-    return rows.defined() ? DiscriminatorData{d.observations.index_select(0, rows), d.actions.index_select(0, rows),
-                                              d.z.index_select(0, rows)}
-                          : d;
+  const RowSlice slice = rows.global_rows.defined() ? rows : RowSlice::whole(policy.size());
+  const DiscriminatorStats before = evaluate_discriminator(*discriminator_, demos, policy, slice.global_size);
+  const int64_t n = slice.global_size, batch = std::max<int64_t>(n / minibatches, 1);
+  const auto order = minibatches > 1 ? torch::randperm(n, generator, torch::kLong) : torch::Tensor();
+  const auto parameters = discriminator_->parameters();
+  const auto take = [&](const DiscriminatorData& d, const torch::Tensor& local) {
+    return local.defined() ? DiscriminatorData{d.observations.index_select(0, local),
+                                               d.actions.index_select(0, local), d.z.index_select(0, local)}
+                           : d;
   };
   for (int step = 0; step < steps; ++step) {
-    const auto rows = order.defined() ? order.narrow(0, (step % minibatches) * batch, batch) : torch::Tensor();
-    const auto loss = bce(discriminator_->forward(take(demos, rows)), discriminator_->forward(take(policy, rows)));
+    const auto local = order.defined()
+                           ? slice.local_rows(order.narrow(0, (step % minibatches) * batch, batch)).to(policy.observations.device())
+                           : torch::Tensor();
+    const auto loss = bce(discriminator_->forward(take(demos, local)), discriminator_->forward(take(policy, local)),
+                          order.defined() ? batch : n);
     optimizer_.zero_grad();
     loss.backward();
+    all_sum_gradients(parameters);
     optimizer_.step();
   }
   return before;

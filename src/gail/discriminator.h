@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "rl/distributed.h"
 #include "rl/mlp.h"
 
 namespace vaegail {
@@ -68,9 +69,10 @@ struct DiscriminatorStats {
   double policy_accuracy = 0.0;  // fraction of policy samples with D < 1/2
 };
 
-// The loss and accuracies on both sides, without gradient.
+// The loss and accuracies on both sides, without gradient. `global_count`: where these pairs are
+// one rank's share of a run's (rl/distributed.h), how many pairs the run has (0: these are all).
 DiscriminatorStats evaluate_discriminator(Discriminator& discriminator, const DiscriminatorData& demos,
-                                          const DiscriminatorData& policy);
+                                          const DiscriminatorData& policy, int64_t global_count = 0);
 
 // Adam on the binary cross-entropy, demonstrations labelled 1, policy samples 0; each side
 // averaged on its own so that their sizes do not set the balance (Algorithm 1's gradient).
@@ -83,9 +85,11 @@ class DiscriminatorTrainer {
   // the whole batch). The paper gives the step count, not the batch: steps = minibatches is one
   // pass over the iteration's data, as OpenAI baselines' GAIL takes it, at a tenth of the
   // full-batch cost. The stats are those of the discriminator as it was before the first step,
-  // on all the samples: how well it told this fresh data apart.
+  // on all the samples: how well it told this fresh data apart. `rows`: where the pairs are one
+  // rank's share of the run's (rl/distributed.h), their global rows; the shuffle is then drawn
+  // over the run's pairs and gradients are summed over the ranks (default: these are all).
   DiscriminatorStats train(const DiscriminatorData& demos, const DiscriminatorData& policy, int steps,
-                           int minibatches, at::Generator& generator);
+                           int minibatches, at::Generator& generator, const RowSlice& rows = {});
 
   torch::optim::Adam& optimizer() { return optimizer_; }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "gail/run_dir.h"
+#include "rl/distributed.h"
 #include "rl/rollout.h"
 #include "rl/trpo.h"
 #include "rl/update_batch.h"
@@ -14,6 +15,7 @@
 #include "util/csv_log.h"
 #include "util/malloc_tuning.h"
 #include "util/rng.h"
+#include "util/world.h"
 #include "vae/demo_dataset.h"
 
 namespace vaegail {
@@ -57,7 +59,7 @@ torch::Tensor step_demonstrations(const std::vector<std::vector<int>>& started, 
   return out;
 }
 
-// Mean over the rollout's episode segments of |mean forward speed − the demo's achieved speed|.
+// Mean over the run's episode segments (all ranks') of |mean forward speed − the demo's achieved speed|.
 double speed_error(const Rollout& rollout, const torch::Tensor& demo_of_step, const GailDemos& demos,
                    int speed_index) {
   if (speed_index < 0) return std::numeric_limits<double>::quiet_NaN();
@@ -66,8 +68,8 @@ double speed_error(const Rollout& rollout, const torch::Tensor& demo_of_step, co
   const auto s = speed.accessor<double, 2>();
   const auto d = done.accessor<bool, 2>();
   const auto m = demo_of_step.accessor<int64_t, 2>();
-  double total = 0, sum = 0;
-  int segments = 0, length = 0;
+  double total = 0, sum = 0, segments = 0;
+  int length = 0;
   for (int64_t i = 0; i < speed.size(1); ++i) {
     for (int64_t t = 0; t < speed.size(0); ++t) {
       sum += s[t][i];
@@ -79,7 +81,7 @@ double speed_error(const Rollout& rollout, const torch::Tensor& demo_of_step, co
       length = 0;
     }
   }
-  return total / segments;
+  return all_sum(total) / all_sum(segments);
 }
 
 std::vector<double> row(const GailMetrics& m) {
@@ -139,11 +141,17 @@ GailTrainer::GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env
     throw std::invalid_argument(
         "GAIL: num_envs and discriminator_minibatches must be positive, iterations and discriminator_steps not negative");
 
-  fs::create_directories(run_dir_ + "/checkpoints");
-  check_or_write_config(run_dir_ + "/config.json", options_, kResumableKeys);
+  // Under mpirun every rank trains its share of the environments; rank 0 alone writes.
+  const World& world = World::get();
+  slice_ = EnvSlice::of_world(options_.num_envs);
+  if (world.is_root()) {
+    fs::create_directories(run_dir_ + "/checkpoints");
+    check_or_write_config(run_dir_ + "/config.json", options_, kResumableKeys);
+  }
+  world.barrier();
 
   demos_ = make_gail_demos(demos, vae::split_demos(demos, options_.seed).train, diverse ? &vae : nullptr);
-  envs_ = std::make_unique<VecEnv>(prototype, options_.num_envs, options_.env_threads);
+  envs_ = std::make_unique<VecEnv>(prototype, slice_.count, options_.env_threads);
   steps_per_env_ = options_.steps_per_env > 0 ? options_.steps_per_env : prototype.episode_length();
   speed_index_ = index_of(prototype.observation_spec().names, "rootx_vel");
 
@@ -160,8 +168,10 @@ GailTrainer::GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env
   trpo_options.critic_learning_rate = options_.critic_learning_rate;
   trpo_ = std::make_unique<Trpo>(agent_->policy_ptr(), agent_->critic_ptr(), trpo_options);
   if (fs::exists(checkpoint_path())) load_checkpoint();
-  truncate_metrics(metrics_path(), iteration_);
-  log_ = std::make_unique<CsvLog>(metrics_path(), kGailMetricColumns);
+  if (world.is_root()) {
+    truncate_metrics(metrics_path(), iteration_);
+    log_ = std::make_unique<CsvLog>(metrics_path(), kGailMetricColumns);
+  }
 }
 
 void GailTrainer::save_checkpoint() const {
@@ -207,21 +217,27 @@ GailMetrics GailTrainer::iterate() {
     return s;
   };
   const bool conditional = options_.mode == GailMode::Diverse;
-  Rng demo_rng(stream_seed(options_.seed, iteration_, kDemoDraws));
+  // Each of the run's environments draws its demonstrations and z from a stream of its own,
+  // so the draws do not depend on which rank steps it.
+  std::vector<Rng> demo_rngs;
+  for (int i = 0; i < envs_->size(); ++i)
+    demo_rngs.emplace_back(derive_seed(stream_seed(options_.seed, iteration_, kDemoDraws), slice_.first + i));
   std::vector<std::vector<int>> started(envs_->size());
   EpisodeStartFn start_episode = [&](int env_index, Env& env) {
-    const int m = static_cast<int>(demo_rng.next() % static_cast<std::uint64_t>(demos_.size()));
+    Rng& rng = demo_rngs[env_index];
+    const int m = static_cast<int>(rng.next() % static_cast<std::uint64_t>(demos_.size()));
     started[env_index].push_back(m);
     if (!demos_.contexts[m].empty()) env.set_context(demos_.contexts[m]);
-    return conditional ? demos_.sample_latent(m, demo_rng) : std::vector<float>{};
+    return conditional ? demos_.sample_latent(m, rng) : std::vector<float>{};
   };
   RolloutCollector collector(*envs_, agent_, stream_seed(options_.seed, iteration_, kCollect), start_episode,
-                             reward_);
+                             reward_, slice_);
   const Rollout rollout = collector.collect(steps_per_env_);
   last_phases_.rollout = lap();
 
   trpo_->reseed(stream_seed(options_.seed, iteration_, kTrpo));
-  const TrpoStats trpo_stats = trpo_->update(make_update_batch(rollout, options_.gamma, options_.lambda));
+  const UpdateBatch batch = make_update_batch(rollout, options_.gamma, options_.lambda, slice_);
+  const TrpoStats trpo_stats = trpo_->update(batch);
   last_phases_.policy_update = lap();
 
   // Each policy step against a step of the demonstration its episode imitated, same z.
@@ -229,32 +245,36 @@ GailMetrics GailTrainer::iterate() {
                                  flatten_steps(rollout.conditions)};
   const auto demo_of_step = step_demonstrations(started, rollout);
   auto generator = at::detail::createCPUGenerator(stream_seed(options_.seed, iteration_, kDemoSteps));
-  const auto [demo_obs, demo_act] = demos_.sample_steps(demo_of_step.reshape({-1}), generator);
+  const auto [demo_obs, demo_act] = demos_.sample_steps(demo_of_step.reshape({-1}), generator, batch.rows);
   const auto device = agent_->device();
   const DiscriminatorData demo{demo_obs.to(device), demo_act.to(device), policy.z};
   auto shuffle = at::detail::createCPUGenerator(stream_seed(options_.seed, iteration_, kDiscriminatorBatches));
-  const DiscriminatorStats disc = discriminator_trainer_->train(demo, policy, options_.discriminator_steps,
-                                                                options_.discriminator_minibatches, shuffle);
+  const DiscriminatorStats disc = discriminator_trainer_->train(
+      demo, policy, options_.discriminator_steps, options_.discriminator_minibatches, shuffle, batch.rows);
   last_phases_.discriminator = lap();
 
   ++iteration_;
   GailMetrics m;
   m.iteration = iteration_;
-  m.steps = static_cast<std::int64_t>(iteration_) * steps_per_env_ * envs_->size();
-  m.episodes = static_cast<int>(rollout.episodes.size());
+  m.steps = static_cast<std::int64_t>(iteration_) * batch.global_size();
   m.demo_accuracy = disc.demo_accuracy;
   m.policy_accuracy = disc.policy_accuracy;
   m.discriminator_loss = disc.loss;
-  m.gail_reward = rollout.rewards.mean().item<double>();
+  // The run's episodes and rewards: sums over this rank's, added over the ranks.
+  std::vector<double> sums = {static_cast<double>(rollout.episodes.size()), 0, 0, 0,
+                              rollout.rewards.sum().item<double>()};
   for (const auto& e : rollout.episodes) {
-    m.env_return += e.env_return;
-    m.episode_length += e.length;
-    m.fall_rate += e.terminated;
+    sums[1] += e.env_return;
+    sums[2] += e.length;
+    sums[3] += e.terminated;
   }
-  const double ended = std::max<size_t>(rollout.episodes.size(), 1);
-  m.env_return /= ended;
-  m.episode_length /= ended;
-  m.fall_rate /= ended;
+  World::get().sum(sums.data(), static_cast<std::int64_t>(sums.size()));
+  m.episodes = static_cast<int>(sums[0]);
+  const double ended = std::max(sums[0], 1.0);
+  m.env_return = sums[1] / ended;
+  m.episode_length = sums[2] / ended;
+  m.fall_rate = sums[3] / ended;
+  m.gail_reward = sums[4] / static_cast<double>(batch.global_size());
   m.speed_error = speed_error(rollout, demo_of_step, demos_, speed_index_);
   m.kl = trpo_stats.kl;
   m.entropy = trpo_stats.entropy;
@@ -262,8 +282,10 @@ GailMetrics GailTrainer::iterate() {
   seconds_before_ += std::chrono::duration<double>(Clock::now() - start).count();
   m.seconds = seconds_before_;
 
-  log_->write(row(m));
-  save_checkpoint();
+  if (World::get().is_root()) {
+    log_->write(row(m));
+    save_checkpoint();
+  }
   last_phases_.bookkeeping = lap();
   return m;
 }
@@ -273,8 +295,13 @@ int GailTrainer::train(const std::function<void(const GailMetrics&)>& on_iterati
   const auto minutes = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 60.0;
   };
+  // Ranks must agree to go on (a clock read differs between them): one rank's stop stops all.
+  const auto go_on = [&] {
+    const bool go = iteration_ < options_.iterations && (options_.minutes <= 0 || minutes() < options_.minutes);
+    return World::get().sum(go ? 0.0 : 1.0) == 0.0;
+  };
   int ran = 0;
-  while (iteration_ < options_.iterations && (options_.minutes <= 0 || minutes() < options_.minutes)) {
+  while (go_on()) {
     const GailMetrics m = iterate();
     ++ran;
     if (on_iteration) on_iteration(m);

@@ -26,6 +26,13 @@
 //                                    the iteration count,
 //                                    one file written atomically after every iteration
 //
+// Ranks (`mpirun -np K vaegail gail train ...`, util/world.h): num_envs counts the run's
+// environments; each rank steps num_envs / K of them, and every sum, mean, shuffle and draw is
+// made over the run's batch (rl/distributed.h), so K ranks train what one process with all
+// num_envs environments trains, to float rounding, and a run may resume with another K. Rank 0
+// alone writes config, metrics and checkpoints; every rank reads the checkpoint (across
+// machines the run directory must be on a shared file system).
+//
 // Reproducibility: every random stream of iteration k (demonstration draws, z noise, the
 // environments' reset seeds, action noise, TRPO's critic minibatches, the discriminator's demo
 // steps) is derived from (seed, k), and nothing else carries over between iterations except
@@ -49,6 +56,7 @@
 #include "gail/gail_agent.h"
 #include "gail/gail_demos.h"
 #include "gail/gail_reward.h"
+#include "rl/distributed.h"
 #include "rl/agent.h"
 #include "rl/trpo.h"
 #include "util/csv_log.h"
@@ -111,6 +119,7 @@ class GailTrainer {
   GailOptions options_;
   std::string run_dir_;
   GailDemos demos_;
+  EnvSlice slice_;  // this rank's share of the run's num_envs environments
   std::unique_ptr<VecEnv> envs_;
   int steps_per_env_ = 0;
   int speed_index_ = -1;  // the observation's forward speed (rootx_vel), -1 if it has none

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <random>
 
+#include "util/world.h"
+
 namespace vaegail {
 
 namespace fs = std::filesystem;
@@ -25,12 +27,15 @@ struct ScratchDir {
 GailBenchResult run_gail_bench(const GailBenchOptions& options, const DemoSet& demos, vae::TrajectoryVae vae) {
   if (options.iterations < 1) throw std::invalid_argument("bench gail: iterations must be positive");
   GailBenchResult r;
-  PhysicsBenchOptions physics;
-  physics.env = options.env;
-  physics.seconds = options.physics_seconds;
-  physics.num_envs = options.gail.num_envs;
-  physics.threads = options.gail.env_threads;
-  r.physics = run_physics_bench(physics);
+  r.ranks = World::get().size();
+  if (r.ranks == 1) {
+    PhysicsBenchOptions physics;
+    physics.env = options.env;
+    physics.seconds = options.physics_seconds;
+    physics.num_envs = options.gail.num_envs;
+    physics.threads = options.gail.env_threads;
+    r.physics = run_physics_bench(physics);
+  }
 
   const auto env = make_env(options.env);
   const ScratchDir scratch;
@@ -57,12 +62,21 @@ std::string format_gail_bench(const GailBenchOptions& o, const GailBenchResult& 
   };
   char head[640];
   std::snprintf(head, sizeof head,
-                "bench gail: %s mode, %d environments x %lld steps per iteration, %d timed iterations "
-                "(after one warm-up), %d Torch thread(s)\n"
+                "bench gail: %s mode, %d environments x %lld steps per iteration on %d rank(s) x %d env thread(s), "
+                "%d timed iterations (after one warm-up), %d Torch thread(s)\n"
                 "per iteration      %8.3f s\n",
                 to_string(o.gail.mode).c_str(), o.gail.num_envs,
-                static_cast<long long>(r.steps_per_iteration / o.gail.num_envs), r.iterations,
-                torch::get_num_threads(), per_it);
+                static_cast<long long>(r.steps_per_iteration / o.gail.num_envs), r.ranks, o.gail.env_threads,
+                r.iterations, torch::get_num_threads(), per_it);
+  if (r.ranks > 1) {
+    char steps[160];
+    std::snprintf(steps, sizeof steps,
+                  "env steps/s        %8.0f during fine-tuning (rank 0's clock)\n"
+                  "ceilings           not measured under mpirun: see scripts/bench/gail_ranks.sh\n",
+                  r.env_steps_per_s());
+    return std::string(head) + phase("rollout", r.phases.rollout) + phase("TRPO + critic", r.phases.policy_update) +
+           phase("discriminator", r.phases.discriminator) + phase("log + checkpoint", r.phases.bookkeeping) + steps;
+  }
   char tail[640];
   std::snprintf(tail, sizeof tail,
                 "env steps/s        %8.0f during fine-tuning\n"
@@ -75,6 +89,27 @@ std::string format_gail_bench(const GailBenchOptions& o, const GailBenchResult& 
                 r.env_steps_per_s() / r.physics.vec_control_steps_per_s);
   return std::string(head) + phase("rollout", r.phases.rollout) + phase("TRPO + critic", r.phases.policy_update) +
          phase("discriminator", r.phases.discriminator) + phase("log + checkpoint", r.phases.bookkeeping) + tail;
+}
+
+nlohmann::json gail_bench_json(const GailBenchOptions& o, const GailBenchResult& r) {
+  nlohmann::json j = {{"mode", to_string(o.gail.mode)},
+                      {"envs", o.gail.num_envs},
+                      {"env_threads", o.gail.env_threads},
+                      {"ranks", r.ranks},
+                      {"iterations", r.iterations},
+                      {"steps_per_iteration", r.steps_per_iteration},
+                      {"seconds_per_iteration", r.seconds_per_iteration()},
+                      {"env_steps_per_s", r.env_steps_per_s()},
+                      {"rollout_s", r.phases.rollout / r.iterations},
+                      {"policy_update_s", r.phases.policy_update / r.iterations},
+                      {"discriminator_s", r.phases.discriminator / r.iterations},
+                      {"bookkeeping_s", r.phases.bookkeeping / r.iterations}};
+  if (r.ranks == 1) {
+    j["all_core_control_steps_per_s"] = r.physics.all_core_control_steps_per_s;
+    j["raw_control_steps_per_s"] = r.physics.raw_control_steps_per_s;
+    j["all_core_ratio"] = r.all_core_ratio();
+  }
+  return j;
 }
 
 }  // namespace vaegail

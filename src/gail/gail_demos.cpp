@@ -26,9 +26,12 @@ std::vector<float> GailDemos::sample_latent(int m, Rng& rng) const {
 }
 
 std::pair<torch::Tensor, torch::Tensor> GailDemos::sample_steps(const torch::Tensor& episode,
-                                                                torch::Generator& generator) const {
+                                                                torch::Generator& generator,
+                                                                const RowSlice& slice) const {
   const auto e = episode.to(torch::kCPU, torch::kLong);
-  const auto u = torch::rand({e.size(0)}, generator, torch::kFloat64);
+  const auto u = slice.global_rows.defined()
+                     ? torch::rand({slice.global_size}, generator, torch::kFloat64).index_select(0, slice.global_rows)
+                     : torch::rand({e.size(0)}, generator, torch::kFloat64);
   const auto step = (u * lengths.index_select(0, e).to(torch::kFloat64)).to(torch::kLong);
   const auto rows = offsets.index_select(0, e) + step;
   return {observations.index_select(0, rows), actions.index_select(0, rows)};

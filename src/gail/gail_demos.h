@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "data/demos.h"
+#include "rl/distributed.h"
 #include "util/rng.h"
 #include "vae/trajectory_vae.h"
 
@@ -27,9 +28,11 @@ struct GailDemos {
   // One reparameterised draw z = μ_m + σ_m·ε of episode m's posterior (empty when Z = 0).
   std::vector<float> sample_latent(int m, Rng& rng) const;
   // For each entry of `episode` [B] (int64), the (x, a) of a uniformly drawn step of that
-  // episode: observations [B, obs_dim], actions [B, act_dim].
-  std::pair<torch::Tensor, torch::Tensor> sample_steps(const torch::Tensor& episode,
-                                                       torch::Generator& generator) const;
+  // episode: observations [B, obs_dim], actions [B, act_dim]. `slice`: where the B entries are
+  // one rank's share of a run's (rl/distributed.h), their global rows: the draws are then made
+  // for every row of the run, whatever the ranks (default: these are all).
+  std::pair<torch::Tensor, torch::Tensor> sample_steps(const torch::Tensor& episode, torch::Generator& generator,
+                                                       const RowSlice& slice = {}) const;
 };
 
 // `vae` may be null (plain GAIL, behaviour cloning): no latent then. With a VAE, the

@@ -1,5 +1,8 @@
 #include "rl/obs_normalizer.h"
 
+#include "rl/distributed.h"
+#include "util/world.h"
+
 namespace vaegail {
 
 namespace {
@@ -17,9 +20,23 @@ void ObsNormalizer::update(const torch::Tensor& batch) {
   if (frozen_ || batch.size(0) == 0) return;
   torch::NoGradGuard no_grad;
   const auto x = batch.reshape({-1, dim_}).to(mean_.device(), torch::kFloat64);
-  const double n = count(), m = static_cast<double>(x.size(0)), total = n + m;
-  const auto batch_mean = x.mean(0);
-  const auto batch_var = x.var(0, /*unbiased=*/false);
+  merge(x.mean(0), x.var(0, /*unbiased=*/false), static_cast<double>(x.size(0)));
+}
+
+void ObsNormalizer::update_over_ranks(const torch::Tensor& rank_batch) {
+  if (!World::get().distributed()) return update(rank_batch);
+  if (frozen_) return;
+  torch::NoGradGuard no_grad;
+  const auto x = rank_batch.reshape({-1, dim_}).to(torch::kCPU, torch::kFloat64);
+  const double m = all_sum(static_cast<double>(x.size(0)));
+  if (m == 0) return;
+  const auto batch_mean = all_sum(x.sum(0)) / m;
+  const auto batch_var = all_sum((x - batch_mean).pow(2).sum(0)) / m;
+  merge(batch_mean.to(mean_.device()), batch_var.to(mean_.device()), m);
+}
+
+void ObsNormalizer::merge(const torch::Tensor& batch_mean, const torch::Tensor& batch_var, double m) {
+  const double n = count(), total = n + m;
   const auto delta = batch_mean - mean_;
   // In-place so the registered buffers stay the same tensors.
   var_.copy_((var_ * n + batch_var * m + delta.pow(2) * (n * m / total)) / total);

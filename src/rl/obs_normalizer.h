@@ -19,6 +19,9 @@ class ObsNormalizer : public torch::nn::Module {
   // Merges the moments of batch [B, dim] into the running ones (Chan et al.'s parallel
   // Welford update), unless frozen.
   void update(const torch::Tensor& batch);
+  // update() with the run's batch when each rank holds a share of it (rl/distributed.h): the
+  // moments of all ranks' rows, so every rank's statistics stay equal.
+  void update_over_ranks(const torch::Tensor& rank_batch);
   // [..., dim] → same shape and dtype: (x - mean) / sqrt(var + eps), clipped.
   torch::Tensor normalize(const torch::Tensor& x) const;
 
@@ -31,6 +34,9 @@ class ObsNormalizer : public torch::nn::Module {
   double count() const { return count_.item<double>(); }
 
  private:
+  // Chan et al.'s merge of a batch's moments (population variance) into the running ones.
+  void merge(const torch::Tensor& batch_mean, const torch::Tensor& batch_var, double batch_count);
+
   int dim_;
   double clip_;
   bool frozen_ = false;

@@ -1,5 +1,7 @@
 #include "rl/ppo.h"
 
+#include "rl/distributed.h"
+
 namespace vaegail {
 
 namespace {
@@ -24,14 +26,19 @@ PpoStats Ppo::update(const UpdateBatch& batch) {
   PpoStats stats;
   for (int epoch = 0; epoch < options_.epochs && !stats.stopped_early; ++epoch) {
     for (const auto& mb : batch.minibatches(options_.minibatches, generator_)) {
+      // Means over the run's minibatch: this rank's sums over the global count, added over ranks.
+      const auto mean = [&](const torch::Tensor& per_row) { return per_row.sum() / mb.global_size(); };
       const auto dist = policy_->distribution(mb.inputs);
       const auto log_ratio = dist.log_prob(mb.actions) - mb.old_log_probs;
       const auto ratio = torch::exp(log_ratio);
       const auto clipped = torch::clamp(ratio, 1 - options_.clip, 1 + options_.clip);
-      const auto policy_loss = -torch::min(ratio * mb.advantages, clipped * mb.advantages).mean();
-      const auto value_loss = (critic_->forward(mb.inputs) - mb.returns).pow(2).mean();
-      const auto entropy = dist.entropy().mean();
-      const auto approx_kl = ((ratio - 1) - log_ratio).mean().item<double>();
+      const auto policy_loss = -mean(torch::min(ratio * mb.advantages, clipped * mb.advantages));
+      const auto value_loss = mean((critic_->forward(mb.inputs) - mb.returns).pow(2));
+      const auto entropy = mean(dist.entropy());
+      const auto clip_fraction = mean(((ratio - 1).abs() > options_.clip).to(torch::kFloat32));
+      const auto means = all_sum(torch::stack({policy_loss, value_loss, entropy, mean((ratio - 1) - log_ratio),
+                                               clip_fraction}).detach().to(torch::kFloat64));
+      const double approx_kl = means[3].item<double>();
       if (options_.target_kl > 0 && approx_kl > 1.5 * options_.target_kl) {
         stats.stopped_early = true;
         break;
@@ -39,14 +46,15 @@ PpoStats Ppo::update(const UpdateBatch& batch) {
 
       optimizer_.zero_grad();
       (policy_loss + options_.value_coef * value_loss - options_.entropy_coef * entropy).backward();
+      all_sum_gradients(parameters_);
       torch::nn::utils::clip_grad_norm_(parameters_, options_.max_grad_norm);
       optimizer_.step();
 
-      stats.policy_loss += policy_loss.item<double>();
-      stats.value_loss += value_loss.item<double>();
-      stats.entropy += entropy.item<double>();
+      stats.policy_loss += means[0].item<double>();
+      stats.value_loss += means[1].item<double>();
+      stats.entropy += means[2].item<double>();
       stats.approx_kl += approx_kl;
-      stats.clip_fraction += ((ratio - 1).abs() > options_.clip).to(torch::kFloat32).mean().item<double>();
+      stats.clip_fraction += means[4].item<double>();
       ++stats.minibatch_steps;
     }
   }

@@ -26,13 +26,15 @@ torch::Tensor buffer_rows(const std::vector<float>& buffer, int first, int count
 }  // namespace
 
 RolloutCollector::RolloutCollector(VecEnv& envs, std::shared_ptr<Agent> agent, std::uint64_t seed,
-                                   EpisodeStartFn on_episode_start, std::shared_ptr<RewardSource> reward_source)
+                                   EpisodeStartFn on_episode_start, std::shared_ptr<RewardSource> reward_source,
+                                   EnvSlice slice)
     : envs_(envs),
       agent_(std::move(agent)),
       on_episode_start_(std::move(on_episode_start)),
       reward_source_(std::move(reward_source)),
-      // Environment i uses stream i of the seed; the action noise the stream after them.
-      generator_(at::detail::createCPUGenerator(derive_seed(seed, envs.size()))),
+      slice_(slice.total > 0 ? slice : EnvSlice::whole(envs.size())),
+      // The run's environment e uses stream e of the seed; the action noise the stream after them.
+      generator_(at::detail::createCPUGenerator(derive_seed(seed, slice_.total))),
       obs_dim_(envs.obs_dim()),
       cond_dim_(agent_->condition_dim()) {
   if (envs.obs_dim() != agent_->obs_dim() || envs.act_dim() != agent_->act_dim())
@@ -42,7 +44,10 @@ RolloutCollector::RolloutCollector(VecEnv& envs, std::shared_ptr<Agent> agent, s
                                 ")");
   if (cond_dim_ > 0 && !on_episode_start_)
     throw std::invalid_argument("RolloutCollector: the agent takes a condition but no episode-start hook gives one");
-  for (int i = 0; i < envs.size(); ++i) seeds_.push_back(derive_seed(seed, i));
+  if (slice_.count != envs.size())
+    throw std::invalid_argument("RolloutCollector: a slice of " + std::to_string(slice_.count) + " environments, " +
+                                std::to_string(envs.size()) + " given");
+  for (int i = 0; i < envs.size(); ++i) seeds_.push_back(derive_seed(seed, slice_.first + i));
   obs_.assign(static_cast<size_t>(envs.size()) * obs_dim_, 0.f);
   conditions_.assign(static_cast<size_t>(envs.size()) * cond_dim_, 0.f);
   running_.resize(envs.size());
@@ -95,8 +100,9 @@ Rollout RolloutCollector::collect(int steps_per_env) {
   std::vector<float> rewards(static_cast<size_t>(T) * n), final_values(rewards.size(), 0.f);
   std::vector<std::uint8_t> terminated(rewards.size()), truncated(rewards.size());
   for (int64_t t = 0; t < T; ++t) {
-    // Drawn for every environment at once, in one stream: the same numbers whatever the blocks.
-    const auto noise = torch::randn({n, act_dim}, generator_);
+    // Drawn for all the run's environments at once, in one stream: the same numbers whatever the
+    // blocks and ranks.
+    const auto noise = torch::randn({slice_.total, act_dim}, generator_).narrow(0, slice_.first, n);
     envs_.for_each_block([&](int first, int count) {
       torch::NoGradGuard block_no_grad;  // thread-local: the pool's threads need their own
       const auto rows = [&](const torch::Tensor& x) { return x.select(0, t).narrow(0, first, count); };
@@ -160,7 +166,7 @@ Rollout RolloutCollector::collect(int steps_per_env) {
   out.rewards = reward_source_->rewards(out);
   if (out.rewards.sizes() != out.env_rewards.sizes())
     throw std::runtime_error("RewardSource returned rewards of the wrong shape");
-  agent_->normalizer().update(out.observations.reshape({-1, obs_dim_}));
+  agent_->normalizer().update_over_ranks(out.observations.reshape({-1, obs_dim_}));
   return out;
 }
 

@@ -19,6 +19,7 @@
 
 #include "env/vec_env.h"
 #include "rl/agent.h"
+#include "rl/distributed.h"
 
 namespace vaegail {
 
@@ -63,12 +64,17 @@ class RolloutCollector {
   // On the first collect() the collector switches `envs` to auto-reset, calls the hook for
   // every environment and resets them all; it owns their episodes from then on. Environment i
   // gets seed stream i of `seed`. Without a hook, the agent's condition_dim must be 0.
+  // `slice`: which of a run's environments `envs` are when ranks share them (rl/distributed.h):
+  // environment i is then the run's first + i, with that seed stream and that column of the
+  // action noise, so the ranks' rollouts together are the one-process rollout of the run. The
+  // default: all of them.
   RolloutCollector(VecEnv& envs, std::shared_ptr<Agent> agent, std::uint64_t seed,
                    EpisodeStartFn on_episode_start = nullptr,
-                   std::shared_ptr<RewardSource> reward_source = std::make_shared<EnvReward>());
+                   std::shared_ptr<RewardSource> reward_source = std::make_shared<EnvReward>(),
+                   EnvSlice slice = {});
 
   // Runs steps_per_env steps in every environment. Afterwards the agent's normaliser (unless
-  // frozen) has absorbed this rollout's observations, for the next collection.
+  // frozen) has absorbed the run's rollout's observations (all ranks'), for the next collection.
   Rollout collect(int steps_per_env);
 
  private:
@@ -81,6 +87,7 @@ class RolloutCollector {
   std::shared_ptr<Agent> agent_;
   EpisodeStartFn on_episode_start_;
   std::shared_ptr<RewardSource> reward_source_;
+  EnvSlice slice_;
   std::vector<std::uint64_t> seeds_;
   torch::Generator generator_;
   bool started_ = false;

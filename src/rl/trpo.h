@@ -42,6 +42,10 @@ struct TrpoStats {
   double value_loss_after = 0.0;
 };
 
+// Every mean over the batch is over the run's batch (UpdateBatch::global_size): with the batch
+// spread over ranks, each rank sums its rows and the sums are added over the ranks
+// (rl/distributed.h), so every rank takes the same step.
+//
 // One Trpo serves a whole training run: the critic's Adam state carries over between updates
 // (a checkpoint saves critic_optimizer()); reseed() gives each update its own shuffling stream.
 class Trpo {
@@ -67,10 +71,12 @@ using LinearOperator = std::function<torch::Tensor(const torch::Tensor&)>;
 
 // v ↦ (F + damping·I)·v, F the Fisher matrix of the policy's trainable parameters at their
 // current values on `inputs`: the Hessian of the mean KL(π_current ‖ π_θ), by double backprop.
-// `frozen` is policy.frozen_mean(inputs) (undefined where the policy has none).
+// `frozen` is policy.frozen_mean(inputs) (undefined where the policy has none). Where the
+// inputs are one rank's share of a run's `global_count` rows (rl/distributed.h), F is the mean
+// over all of them, summed over the ranks; 0: the inputs are all there is.
 // The operator is only valid while the parameters keep their current values.
 LinearOperator fisher_vector_product(StochasticPolicy& policy, const torch::Tensor& inputs,
-                                     const torch::Tensor& frozen, double damping);
+                                     const torch::Tensor& frozen, double damping, int64_t global_count = 0);
 
 // Solves A·x = b for symmetric positive definite A, from x = 0, in at most `iterations` steps
 // (earlier once the squared residual falls below residual_tol).

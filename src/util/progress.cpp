@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "util/world.h"
+
 namespace vaegail {
 
 namespace {
@@ -16,7 +18,9 @@ double seconds_between(std::chrono::steady_clock::time_point a,
 
 Progress::Progress(std::string label, std::int64_t total, std::string unit)
     : label_(std::move(label)), unit_(std::move(unit)), total_(total),
-      start_(std::chrono::steady_clock::now()), last_draw_(start_), tty_(isatty(STDERR_FILENO)) {}
+      start_(std::chrono::steady_clock::now()), last_draw_(start_), tty_(isatty(STDERR_FILENO)),
+      // Under mpirun the ranks share one terminal; rank 0 speaks for the run.
+      quiet_(!World::get().is_root()) {}
 
 Progress::~Progress() { finish(); }
 
@@ -26,7 +30,7 @@ void Progress::set(std::int64_t done) {
   done_ = done;
   const auto now = std::chrono::steady_clock::now();
   const double since = seconds_between(last_draw_, now);
-  if ((tty_ && since >= 0.1) || (!tty_ && since >= 10.0)) draw(false);
+  if (!quiet_ && ((tty_ && since >= 0.1) || (!tty_ && since >= 10.0))) draw(false);
 }
 
 void Progress::resume(std::int64_t done) {
@@ -47,7 +51,7 @@ double Progress::eta_seconds(std::int64_t left, double rate, double budget_left)
 void Progress::finish() {
   if (finished_) return;
   finished_ = true;
-  draw(true);
+  if (!quiet_) draw(true);
 }
 
 std::string Progress::format_duration(double seconds) {

@@ -38,7 +38,7 @@ class Progress {
   std::int64_t total_, done_ = 0, start_done_ = 0;
   double time_budget_ = -1;  // seconds from start_; < 0: none
   std::chrono::steady_clock::time_point start_, last_draw_;
-  bool tty_, finished_ = false;
+  bool tty_, quiet_, finished_ = false;
 };
 
 }  // namespace vaegail

@@ -386,9 +386,9 @@ std::string format_classification(const TargetClassification& r, bool by_expert)
     std::snprintf(buf, sizeof buf, "linear read-out (ridge %g, chosen by leaving each training expert out)", r.ridge);
     rule = buf;
   }
-  std::snprintf(buf, sizeof buf, "%s on %s: %d / %d = %.1f%%%s\n", rule.c_str(),
+  std::snprintf(buf, sizeof buf, "%s on %s: %d / %d = %.1f%%\n", rule.c_str(),
                 r.leave_one_expert_out ? "training embeddings, each expert left out in turn" : "held-out embeddings",
-                r.correct, r.total, 100.0 * r.accuracy(), r.leave_one_expert_out || r.linear ? "" : "  (bar: >= 90%)");
+                r.correct, r.total, 100.0 * r.accuracy());
   std::string out = buf;
   for (const auto& [context, ct] : r.per_target) {
     std::snprintf(buf, sizeof buf, "  target %+g: %d / %d = %.1f%%\n", context, ct.first, ct.second,

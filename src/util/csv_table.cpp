@@ -1,4 +1,4 @@
-#include "plot/csv_table.h"
+#include "util/csv_table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "util/atomic_file.h"
 #include "util/csv_log.h"
 
-namespace vaegail::plot {
+namespace vaegail {
 namespace {
 
 std::string without_carriage_return(std::string line) {
@@ -94,4 +94,4 @@ std::vector<std::string> CsvTable::strings(const std::string& column) const {
   return values;
 }
 
-}  // namespace vaegail::plot
+}  // namespace vaegail

@@ -1,4 +1,4 @@
-// A CSV file with a header row, read whole for plotting: metrics logs (util/csv_log.h), VAE
+// A CSV file with a header row, read whole for `vaegail plot`: metrics logs (util/csv_log.h), VAE
 // embeddings (vae/embedding.h) or any table a user brings. Cells stay text until a column is
 // asked for as numbers, so string columns (expert ids) do not get in the way.
 //
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace vaegail::plot {
+namespace vaegail {
 
 class CsvTable {
  public:
@@ -35,4 +35,4 @@ class CsvTable {
   std::vector<int> line_numbers_;                // of each row in the file, for errors
 };
 
-}  // namespace vaegail::plot
+}  // namespace vaegail

@@ -1,10 +1,10 @@
-#include "plot/csv_table.h"
+#include "util/csv_table.h"
 
 #include <gtest/gtest.h>
 
 #include <functional>
 
-namespace vaegail::plot {
+namespace vaegail {
 namespace {
 
 std::string error_of(const std::function<void()>& f) {
@@ -42,4 +42,4 @@ TEST(CsvTable, ErrorsNameFileLineAndColumn) {
 }
 
 }  // namespace
-}  // namespace vaegail::plot
+}  // namespace vaegail

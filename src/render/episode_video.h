@@ -1,0 +1,59 @@
+// Episodes to an MP4: each episode is replayed in its environment (reset with its seed and
+// context, then its recorded actions stepped one by one: MuJoCo is deterministic, so the replay
+// passes through the recorded states) and drawn as one tile of a grid, one frame per control
+// step. A demonstration file stores observations, not MuJoCo states, and the walker's leave out
+// where it stands; its actions and seed are what rebuild the motion. The replay is checked
+// against the recorded observations, so an episode that cannot be replayed exactly (recorded
+// with execution noise, or imported from another tool) says by how much it departs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "data/demos.h"
+#include "env/env.h"
+#include "render/frame_renderer.h"
+
+namespace vaegail {
+class Progress;
+}
+
+namespace vaegail::render {
+
+// An episode and the caption of its tile. The episode needs its seed, context (empty: the
+// environment's own) and actions [T, act_dim]; observations [T+1, obs_dim], when present,
+// are compared with the replay's.
+struct Clip {
+  std::string caption;
+  Episode episode;
+};
+
+struct VideoOptions {
+  int tile_width = 320, tile_height = 240;  // pixels per tile, even
+  int fps = 0;  // 0: real time, 1 / the control step (rounded): 40 for the walker
+  CameraOptions camera;
+};
+
+struct ReplayReport {
+  std::string caption;
+  int steps = 0;  // control steps replayed
+  // Largest |replayed - recorded| over every observation component and step; 0 without
+  // recorded observations.
+  double max_observation_error = 0;
+};
+
+// grid[r][c] is the clip of row r, column c; the frame has as many columns as the longest row
+// (the cells a shorter row lacks stay black) and runs until the longest episode ends (an ended
+// episode holds its last state, captioned "ended"). Throws RenderError (one line) for an
+// environment that is not a MuJoCo one or an empty grid, DataError naming the clip for an
+// episode that does not fit the environment. `progress` advances one per frame.
+std::vector<ReplayReport> write_episode_video(const Env& prototype, const std::vector<std::vector<Clip>>& grid,
+                                              const VideoOptions& options, const std::string& path,
+                                              Progress* progress = nullptr);
+
+// The frames a grid's video has: the longest episode's steps + 1.
+int video_frames(const std::vector<std::vector<Clip>>& grid);
+// options.fps, or real time for `env`.
+int video_fps(const Env& env, const VideoOptions& options);
+
+}  // namespace vaegail::render

@@ -1,0 +1,66 @@
+#include "render/gl_context.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/gl.h>
+
+#include <cstdio>
+
+namespace vaegail::render {
+
+namespace {
+
+[[noreturn]] void fail(const char* call) {
+  char code[16];
+  std::snprintf(code, sizeof code, "0x%04x", static_cast<unsigned>(eglGetError()));
+  throw RenderError(std::string("offscreen OpenGL: ") + call + " failed (EGL error " + code +
+                    "; Mesa's EGL and llvmpipe come with libegl-mesa0 and libgl1-mesa-dri)");
+}
+
+}  // namespace
+
+GlContext::GlContext() {
+  // The surfaceless platform needs neither an X server nor a GPU device node.
+  const auto get_platform_display =
+      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  if (!get_platform_display) fail("eglGetProcAddress(eglGetPlatformDisplayEXT)");
+  EGLDisplay display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  if (display == EGL_NO_DISPLAY) fail("eglGetPlatformDisplayEXT(surfaceless)");
+  if (!eglInitialize(display, nullptr, nullptr)) fail("eglInitialize");
+  display_ = display;
+  // MuJoCo's renderer is desktop OpenGL (fixed function and framebuffer objects), not GLES. It
+  // draws into its own framebuffer object, so the config's surfaces go unused; the surfaceless
+  // platform offers pbuffer configs only (the default, window, matches none).
+  const EGLint attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+  EGLConfig config;
+  EGLint configs = 0;
+  if (!eglChooseConfig(display, attributes, &config, 1, &configs) || configs < 1) {
+    eglTerminate(display);
+    fail("eglChooseConfig(desktop OpenGL)");
+  }
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    eglTerminate(display);
+    fail("eglBindAPI(EGL_OPENGL_API)");
+  }
+  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, nullptr);
+  if (context == EGL_NO_CONTEXT) {
+    eglTerminate(display);
+    fail("eglCreateContext");
+  }
+  if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+    eglDestroyContext(display, context);
+    eglTerminate(display);
+    fail("eglMakeCurrent(no surface)");
+  }
+  context_ = context;
+  const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  renderer_ = name ? name : "unknown";
+}
+
+GlContext::~GlContext() {
+  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  eglDestroyContext(display_, context_);
+  eglTerminate(display_);
+}
+
+}  // namespace vaegail::render
