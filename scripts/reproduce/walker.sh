@@ -14,8 +14,8 @@
 #   results  scripts/walker_results.sh: embeddings, 5-NN and linear read-out, t-SNE, loss curves, the VAE
 #            policy alone and the Figure 4 evaluation into results/walker/: about 10 minutes
 #   transitions  the paper's transition experiment (end of section 4.3): 200 seeded pairs of demonstrations of
-#            different speeds, z blended from the first's to the second's at mid-episode, for the VAE and the
-#            diverse-GAIL policies, into results/walker/transitions/: about TIME minutes
+#            different speeds, z blended from the first's to the second's at mid-episode, for the VAE, diverse-GAIL,
+#            plain-GAIL and BC policies, into results/walker/transitions/ (two MP4s in videos/): about 4 minutes
 #   all      every stage above in order: about 3.5 hours on 2 cores
 # The experts, checkpoints and demonstration file are committed, so `results transitions` alone regenerates every
 # walker table and figure of docs/results.md; the earlier stages overwrite the committed artefacts (seeded: runs on
@@ -67,7 +67,8 @@ results() {
 transitions() {
   ensure $demos demos
   run_to results/walker/transitions.txt $v eval transitions --demos $demos --vae $vae_run/checkpoints/latest.pt \
-    --gail checkpoints/walker/diverse_gail --pairs 200 --seed 0 --per-expert 11 --out-dir results/walker/transitions
+    --gail checkpoints/walker/diverse_gail --plain checkpoints/walker/plain_gail --bc checkpoints/walker/bc \
+    --pairs 200 --seed 0 --per-expert 11 --videos 2 --out-dir results/walker/transitions
 }
 
 run_stages experts demos vae policies results transitions

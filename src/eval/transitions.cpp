@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "util/rng.h"
@@ -157,6 +158,7 @@ std::vector<TransitionRow> run_transitions(const Env& prototype, const DemoSet& 
       r.to = judge.of_demonstration(demos, pairs[i].to);
       r.fell = outcomes[i].fell;
       r.fall_step = outcomes[i].fall_step;
+      r.up_at_blend = !r.fell || r.fall_step > blend.start;
       r.after = judge.of_rollout(outcomes[i].episode, measured_from);
       r.matched = !r.fell && judge.matches(r.after, r.to);
       rows.push_back(r);
@@ -190,15 +192,23 @@ std::string kind_of(const TransitionRow& r) {
 
 std::vector<TransitionSummary> summarize_transitions(const std::vector<TransitionRow>& rows, bool by_labels) {
   std::vector<TransitionSummary> out;
-  const auto add = [&out](const TransitionSummary& key, const TransitionRow& r) {
+  std::set<std::pair<std::string, int64_t>> matched_alone;  // (policy, B) whose reference matched
+  for (const auto& r : rows)
+    if (r.reference() && r.matched) matched_alone.insert({r.policy, r.pair.to});
+  const auto add = [&](const TransitionSummary& key, const TransitionRow& r) {
     auto it = std::find_if(out.begin(), out.end(), [&](const TransitionSummary& s) {
       return s.policy == key.policy && s.pairs == key.pairs && s.from_label == key.from_label &&
              s.to_label == key.to_label;
     });
     if (it == out.end()) it = out.insert(out.end(), key);
     ++it->n;
+    it->up_at_blend += r.up_at_blend;
     it->stayed_up += !r.fell;
     it->matched += r.matched;
+    if (!r.reference() && matched_alone.count({r.policy, r.pair.to})) {
+      ++it->b_alone;
+      it->matched_b_alone += r.matched;
+    }
   };
   std::vector<std::string> policies;
   for (const auto& r : rows)
@@ -207,7 +217,7 @@ std::vector<TransitionSummary> summarize_transitions(const std::vector<Transitio
     for (const std::string kind : {"different", "same", "none"})
       for (const auto& r : rows) {
         if (r.policy != policy || kind_of(r) != kind || (by_labels && kind != "different")) continue;
-        TransitionSummary key{policy, kind, "", "", 0, 0, 0};
+        TransitionSummary key{policy, kind, "", "", 0, 0, 0, 0, 0, 0};
         if (by_labels) {
           key.from_label = r.from.label;
           key.to_label = r.to.label;
@@ -225,6 +235,7 @@ std::vector<TransitionSummary> summarize_transitions(const std::vector<Transitio
              std::make_pair(number(b.from_label), number(b.to_label));
     });
   for (auto& s : out) {
+    s.up_at_blend /= s.n;
     s.stayed_up /= s.n;
     s.matched /= s.n;
   }
@@ -238,13 +249,17 @@ std::string transition_table(const std::vector<TransitionSummary>& summaries, co
                                                  {"same", "A, B of the same " + noun},
                                                  {"none", "none: B from B's start (reference)"}};
   std::string table = std::string("| policy | ") + (by_labels ? "from " + noun + " | to " + noun : "transition") +
-                      " | pairs | stayed up | matched B |\n|---|" + (by_labels ? "---:|---:|" : "---|") +
-                      "---:|---:|---:|\n";
-  char line[320];
+                      " | pairs | up at the blend | stayed up | matched B | matched B where B alone is |\n|---|" +
+                      (by_labels ? "---:|---:|" : "---|") + "---:|---:|---:|---:|---:|\n";
+  char line[320], alone[64];
   for (const auto& s : summaries) {
     const std::string what = by_labels ? s.from_label + " | " + s.to_label : kinds.at(s.pairs);
-    std::snprintf(line, sizeof line, "| %s | %s | %d | %.1f%% | %.1f%% |\n", s.policy.c_str(), what.c_str(), s.n,
-                  100.0 * s.stayed_up, 100.0 * s.matched);
+    if (s.pairs == "none")
+      std::snprintf(alone, sizeof alone, "-");
+    else
+      std::snprintf(alone, sizeof alone, "%d of %d", s.matched_b_alone, s.b_alone);
+    std::snprintf(line, sizeof line, "| %s | %s | %d | %.1f%% | %.1f%% | %.1f%% | %s |\n", s.policy.c_str(),
+                  what.c_str(), s.n, 100.0 * s.up_at_blend, 100.0 * s.stayed_up, 100.0 * s.matched, alone);
     table += line;
   }
   return table;

@@ -112,6 +112,7 @@ struct TransitionRow {
   Behaviour from, to;        // the demonstrations'
   bool fell = false;
   int fall_step = -1;        // -1: stayed up to the end
+  bool up_at_blend = false;  // had not fallen when the blend began (a transition was tried)
   Behaviour after;           // the rollout's after the blend and the settling, up to its end (NaN speed: it ended first)
   bool matched = false;      // stayed up to the end and `after` matches `to`
   bool reference() const { return pair.from == pair.to; }
@@ -135,14 +136,19 @@ struct TransitionSummary {
   std::string policy, pairs;  // pairs: "different", "same" or "none" (the (B, B) references)
   std::string from_label, to_label;  // set in the summaries by labels
   int n = 0;
-  double stayed_up = 0, matched = 0;  // fractions of n
+  double up_at_blend = 0, stayed_up = 0, matched = 0;  // fractions of n
+  // Transitions to a B that the policy matches without a transition (its (B, B) reference
+  // matched), and how many of them matched B: the transition's own success, apart from how
+  // well the policy imitates B at all. 0 for the references themselves.
+  int b_alone = 0, matched_b_alone = 0;
 };
 
 // Per policy, one summary per kind of pair present (different behaviours, same behaviour, no
 // transition), in that order; with `by_labels`, per policy and (from, to) label of the pairs of
 // different behaviours.
 std::vector<TransitionSummary> summarize_transitions(const std::vector<TransitionRow>& rows, bool by_labels = false);
-// A Markdown table of the summaries; `noun` names the behaviour ("speed").
+// A Markdown table of the summaries (pairs, up when the blend began, stayed up to the end,
+// matched B, matched B where B alone is matched); `noun` names the behaviour ("speed").
 std::string transition_table(const std::vector<TransitionSummary>& summaries, const std::string& noun);
 
 }  // namespace vaegail::eval

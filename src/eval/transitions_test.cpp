@@ -150,6 +150,7 @@ TEST(Transitions, RowsMeasureEachPairAndTheCsvHasItsColumns) {
     EXPECT_EQ(r.pair, pairs[i]);
     EXPECT_EQ(r.to.label, judge.of_demonstration(demos, pairs[i].to).label);
     EXPECT_EQ(r.fell, rollouts[i].fell);
+    EXPECT_EQ(r.up_at_blend, !r.fell || r.fall_step > 20);
     EXPECT_DOUBLE_EQ(r.after.speed, judge.of_rollout(rollouts[i].episode, 29).speed);
     EXPECT_EQ(r.matched, !r.fell && std::abs(r.after.speed - r.to.speed) <= 0.25);
   }
@@ -185,6 +186,7 @@ TEST(Transitions, SummariesCountPairsOfDifferentBehavioursApartFromTheReferences
     r.from.label = from_label;
     r.to.label = to_label;
     r.fell = fell;
+    r.up_at_blend = !fell || from == 1;  // of the falls, only the one from episode 1 came after the blend began
     r.matched = matched;
     return r;
   };
@@ -196,15 +198,23 @@ TEST(Transitions, SummariesCountPairsOfDifferentBehavioursApartFromTheReferences
   ASSERT_EQ(all.size(), 4u);
   EXPECT_EQ(all[0].pairs, "different");
   EXPECT_EQ(all[0].n, 3);
+  EXPECT_DOUBLE_EQ(all[0].up_at_blend, 1.0);
   EXPECT_DOUBLE_EQ(all[0].stayed_up, 2.0 / 3);
   EXPECT_DOUBLE_EQ(all[0].matched, 1.0 / 3);
   EXPECT_EQ(all[1].pairs, "same");
   EXPECT_EQ(all[2].pairs, "none");
   EXPECT_EQ(all[2].n, 1);
+  // p's reference (1, 1) matched: of the two transitions to 1, one matched.
+  EXPECT_EQ(all[0].b_alone, 2);
+  EXPECT_EQ(all[0].matched_b_alone, 1);
+  EXPECT_EQ(all[1].b_alone, 1);  // (3, 1), same speed
+  EXPECT_EQ(all[3].b_alone, 0);  // q has no reference
   EXPECT_EQ(all[3].policy, "q");
   const auto table = transition_table(all, "speed");
-  EXPECT_NE(table.find("| p | A, B of different speeds | 3 | 66.7% | 33.3% |"), std::string::npos) << table;
-  EXPECT_NE(table.find("| q | A, B of different speeds | 1 | 0.0% | 0.0% |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| p | A, B of different speeds | 3 | 100.0% | 66.7% | 33.3% | 1 of 2 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| p | none: B from B's start (reference) | 1 | 100.0% | 100.0% | 100.0% | - |"),
+            std::string::npos) << table;
+  EXPECT_NE(table.find("| q | A, B of different speeds | 1 | 0.0% | 0.0% | 0.0% | 0 of 0 |"), std::string::npos) << table;
 
   const auto by_labels = summarize_transitions(rows, /*by_labels=*/true);
   ASSERT_EQ(by_labels.size(), 3u);  // p: -1 -> 1, 1 -> -1; q: -1 -> 1
@@ -213,7 +223,7 @@ TEST(Transitions, SummariesCountPairsOfDifferentBehavioursApartFromTheReferences
   EXPECT_DOUBLE_EQ(by_labels[0].matched, 0.5);
   EXPECT_EQ(by_labels[1].from_label, "1");
   EXPECT_EQ(by_labels[2].policy, "q");
-  EXPECT_NE(transition_table(by_labels, "speed").find("| p | 1 | -1 | 1 | 0.0% | 0.0% |"), std::string::npos);
+  EXPECT_NE(transition_table(by_labels, "speed").find("| p | 1 | -1 | 1 | 100.0% | 0.0% | 0.0% | 0 of 0 |"), std::string::npos);
 }
 
 }  // namespace
