@@ -26,7 +26,8 @@ def running_mean(values, window):
 
 def draw(args):
     table = plotlib.read_csv(args.csv)
-    panel, series, style = plotlib.strings(table, "panel"), plotlib.strings(table, "series"), plotlib.strings(table, "style")
+    panel, series = plotlib.strings(table, "panel"), plotlib.strings(table, "series")
+    style = plotlib.strings(table, "style")
     x, y = plotlib.numbers(table, "x"), plotlib.numbers(table, "y")
     panels = list(dict.fromkeys(panel))
     names = list(dict.fromkeys(series))

@@ -209,7 +209,8 @@ void run_eval_transitions(const EvalTransitionsFlags& f) {
                 sampled.size(), pairs.size() - sampled.size(), blend.start, blend.end() - 1, blend.start * dt,
                 blend.end() * dt, env.episode_length() * dt, judge.noun.c_str(), measured_from, measured_from * dt,
                 f.transition.settle, judge.rule.c_str());
-  const std::string table = std::string(method) + eval::transition_table(eval::summarize_transitions(rows), judge.noun) +
+  const std::string table = std::string(method) +
+                            eval::transition_table(eval::summarize_transitions(rows), judge.noun) +
                             "\nBy " + judge.noun + " of A and of B (pairs of different " + judge.noun + "s):\n\n" +
                             eval::transition_table(eval::summarize_transitions(rows, /*by_labels=*/true), judge.noun);
   fs::create_directories(f.out_dir);

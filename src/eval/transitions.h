@@ -113,7 +113,7 @@ struct TransitionRow {
   bool fell = false;
   int fall_step = -1;        // -1: stayed up to the end
   bool up_at_blend = false;  // had not fallen when the blend began (a transition was tried)
-  Behaviour after;           // the rollout's after the blend and the settling, up to its end (NaN speed: it ended first)
+  Behaviour after;           // the rollout's after the blend and the settling (NaN speed: it ended first)
   bool matched = false;      // stayed up to the end and `after` matches `to`
   bool reference() const { return pair.from == pair.to; }
   bool different() const { return from.label != to.label; }
