@@ -43,6 +43,10 @@ printf 'path,group,label,style,x,y\n0,0,a,solid,0,0\n0,0,a,solid,1,1\n1,0.50,alp
   > "$tmp/interpolation.csv"
 draws paths.py --csv "$tmp/interpolation.csv" --colormap viridis
 
+printf 'panel,series,style,x,y\nA to B,vae,solid,0,1\nA to B,vae,solid,1,2\nA to B,demonstration B,dashed,0,3\nA to B,demonstration B,dashed,1,3\nB to A,vae,solid,0,0\nB to A,vae,solid,1,-1\nC to A,vae,solid,0,0\n' \
+  > "$tmp/series.csv"
+draws timeseries.py --csv "$tmp/series.csv" --shade 0.25,0.5 --smooth 2 --columns 2
+
 # Vector output by the extension.
 "$python" "$here/curves.py" --csv "$tmp/metrics.csv" --y val_loss --out "$tmp/out.svg" && grep -q '<svg' "$tmp/out.svg" ||
   fail "curves.py --out out.svg: no SVG"
@@ -58,6 +62,8 @@ grep -q "missing.csv: No such file" "$tmp/stderr" && [ ! -e "$tmp/out.png" ] ||
   fail "histogram.py on a missing file: $(cat "$tmp/stderr")"
 "$python" "$here/paths.py" --csv "$tmp/metrics.csv" --out "$tmp/out.png" 2> "$tmp/stderr"
 grep -q "metrics.csv: no column 'path'" "$tmp/stderr" || fail "paths.py without a path column: $(cat "$tmp/stderr")"
+"$python" "$here/timeseries.py" --csv "$tmp/series.csv" --shade 1 --out "$tmp/out.png" 2> "$tmp/stderr"
+grep -q "shade: two numbers" "$tmp/stderr" || fail "timeseries.py --shade 1: $(cat "$tmp/stderr")"
 ls "$tmp" | grep -q 'tmp-' && fail "a temporary figure was left behind: $(ls "$tmp")"
 
 echo "plots_test: $failures failure(s)"

@@ -44,6 +44,12 @@ histograms() {  # the three of `eval walker`, from the CSV files it writes besid
 }
 histograms results/walker/eval
 
+# scripts/reproduce/walker.sh transitions (eval transitions): blend steps 200..220, measured from 6.5 s
+draw timeseries.py --csv results/walker/transitions/speed_over_time.csv --shade 5.0000,5.5000 --smooth 40 \
+  --xlabel "time (s)" --ylabel "forward speed (m/s)" --height 720 \
+  --title "forward speed through a transition (1 s running mean; blend shaded; measured from 6.50 s)" \
+  --out results/walker/transitions/speed_over_time.png
+
 # scripts/walker_dense_results.sh, on the published dense VAE and on the root-only encoder
 tsne results/walker/dense
 draw curves.py --csv checkpoints/walker/vae_dense/metrics.csv --y train_loss,val_loss --log-y \

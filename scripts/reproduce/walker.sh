@@ -2,7 +2,7 @@
 # The paper's walker experiment (sections 3.1 and 4.2, Figure 4): every published walker artefact and
 # result, from the experts to the tables of docs/results.md ("Figure 4").
 #
-# Usage: scripts/reproduce/walker.sh [--dry-run] [STAGE...]   (default: results)
+# Usage: scripts/reproduce/walker.sh [--dry-run] [STAGE...]   (default: results transitions)
 #   experts  29 single-speed PPO experts (24 at -1/0/1 m/s, 5 at 3 m/s) into experts/walker and two
 #            context-conditioned ones into experts/walker_context, each graded by `experts eval`:
 #            about 67 minutes for the 29 with 2 jobs, plus about 25 for the two 6 M-step context experts
@@ -13,16 +13,19 @@
 #            (30 epochs) into checkpoints/walker/{diverse_gail,plain_gail,bc}
 #   results  scripts/walker_results.sh: embeddings, 5-NN and linear read-out, t-SNE, loss curves, the VAE
 #            policy alone and the Figure 4 evaluation into results/walker/: about 10 minutes
+#   transitions  the paper's transition experiment (end of section 4.3): 200 seeded pairs of demonstrations of
+#            different speeds, z blended from the first's to the second's at mid-episode, for the VAE, diverse-GAIL,
+#            plain-GAIL and BC policies, into results/walker/transitions/ (two MP4s in videos/): about 4 minutes
 #   all      every stage above in order: about 3.5 hours on 2 cores
-# The experts, checkpoints and demonstration file are committed, so `results` alone regenerates every walker
-# table and figure of docs/results.md; the earlier stages overwrite the committed artefacts (seeded: runs on
+# The experts, checkpoints and demonstration file are committed, so `results transitions` alone regenerates every
+# walker table and figure of docs/results.md; the earlier stages overwrite the committed artefacts (seeded: runs on
 # another machine or thread count may differ in the last digits). The embedding study of
 # docs/experiments/walker-embedding.md is scripts/reproduce/walker_embedding.sh.
 # --dry-run prints the commands without running them. Run from anywhere; paths are the repository's.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/reproduce/common.sh
-parse_stages results "$@"
+parse_stages "results transitions" "$@"
 
 v=build/vaegail
 demos=data/walker/demos.h5
@@ -61,4 +64,11 @@ results() {
   run scripts/walker_results.sh results/walker
 }
 
-run_stages experts demos vae policies results
+transitions() {
+  ensure $demos demos
+  run_to results/walker/transitions.txt $v eval transitions --demos $demos --vae $vae_run/checkpoints/latest.pt \
+    --gail checkpoints/walker/diverse_gail --plain checkpoints/walker/plain_gail --bc checkpoints/walker/bc \
+    --pairs 200 --seed 0 --per-expert 11 --videos 2 --out-dir results/walker/transitions
+}
+
+run_stages experts demos vae policies results transitions

@@ -94,6 +94,9 @@ run_in "$tmp/elsewhere" eval body --demos "$tmp/body.h5" --vae "$tmp/body_vae/ch
   --gail "$tmp/body_gail" --per-expert 3 --out-dir "$tmp/body_eval"
 grep -q '^| diverse_gail | 3 |' "$tmp/body_eval/summary.md" && grep -q 'error_torso_height' "$tmp/body_eval/imitation.csv" ||
   fail "eval body: no diverse_gail row or torso_height error in $tmp/body_eval"
+# transitions need a task's notion of behaviour (eval/transitions.h): a body of one's own has none
+expect_error "has no behaviour judge for transitions" "$tmp/body_transitions" -- eval transitions \
+  --demos "$tmp/body.h5" --vae "$tmp/body_vae/checkpoints/latest.pt" --out-dir "$tmp/body_transitions"
 sed 's/data="0.35"/data="0.3"/' "$body" > "$tmp/other_body.xml"
 expect_error "body.h5: recorded on body docs/own_body/hopper.xml (sha256" "$tmp/g" -- gail train --demos "$tmp/body.h5" \
   --vae "$tmp/body_vae/checkpoints/latest.pt" --run-dir "$tmp/g" --iterations 1 --task "$tmp/other_body.xml"

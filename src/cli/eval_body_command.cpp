@@ -20,7 +20,8 @@ namespace vaegail::cli {
 namespace {
 
 struct EvalBodyFlags {
-  std::string demos, vae, gail, plain, bc, out_dir, task, device = "cpu";
+  EvalInputs inputs;
+  std::string out_dir, task, device = "cpu";
   int per_expert = 5;
   vae::ImitationOptions rollout;
 };
@@ -28,13 +29,12 @@ struct EvalBodyFlags {
 void run_eval_body(const EvalBodyFlags& f) {
   torch::NoGradGuard no_grad;
   const auto device = parse_device(f.device);
-  if (!std::filesystem::exists(f.vae)) throw std::invalid_argument(f.vae + ": no such VAE checkpoint");
-  const DemoSet demos = read_demos(f.demos);
+  auto setup = load_eval_setup(f.inputs, device);
+  const DemoSet& demos = setup.demos;
   check_demo_task(demos, f.task);
-  auto model = vae::load_trained_vae(f.vae, device);
-  model->eval();
-  const auto env = demo_env(demos, model);
-  const auto policies = load_policies(model, *env, {f.gail, f.plain, f.bc}, device);
+  auto& model = setup.model;
+  const auto& env = setup.env;
+  const auto& policies = setup.policies;
 
   const auto episodes = eval::episodes_per_expert(demos, f.per_expert);
   const auto z = vae::encode_episodes(model, demos, episodes);
@@ -56,12 +56,7 @@ void add_eval_body(CLI::App& eval) {
   auto f = std::make_shared<EvalBodyFlags>();
   CLI::App* c = eval.add_subcommand("body", "any body: imitate demonstrations with the VAE and fine-tuned policies; "
                                             "falls and per-feature errors against the demonstrations");
-  c->add_option("--demos", f->demos, "demonstration file (.h5); its body and task are rebuilt from it")->required();
-  c->add_option("--vae", f->vae, "VAE checkpoint (RUN_DIR/checkpoints/latest.pt); encodes the demonstrations")
-      ->required();
-  c->add_option("--gail", f->gail, "diverse-GAIL run directory (gail train --mode diverse)");
-  c->add_option("--plain", f->plain, "plain-GAIL run directory (gail train --mode plain)");
-  c->add_option("--bc", f->bc, "behaviour-cloning run directory (bc train)");
+  add_eval_input_options(*c, f->inputs);
   c->add_option("--per-expert", f->per_expert, "demonstrations per expert id")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   c->add_option("--out-dir", f->out_dir, "where imitation.csv and summary.md go")->required();

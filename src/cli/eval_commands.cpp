@@ -27,7 +27,8 @@ namespace fs = std::filesystem;
 namespace {
 
 struct EvalWalkerFlags {
-  std::string demos, vae, gail, plain, bc, out_dir, device = "cpu";
+  EvalInputs inputs;
+  std::string out_dir, device = "cpu";
   int per_expert = 11;
   vae::ImitationOptions rollout;
   int videos = 0;
@@ -84,18 +85,37 @@ std::vector<eval::NamedPolicy> load_policies(const vae::TrajectoryVae& model, co
   return policies;
 }
 
+void add_eval_input_options(CLI::App& command, EvalInputs& inputs) {
+  command.add_option("--demos", inputs.demos, "demonstration file (.h5); its body and task are rebuilt from it")
+      ->required();
+  command.add_option("--vae", inputs.vae, "VAE checkpoint (RUN_DIR/checkpoints/latest.pt); encodes the demonstrations")
+      ->required();
+  command.add_option("--gail", inputs.runs.gail, "diverse-GAIL run directory (gail train --mode diverse)");
+  command.add_option("--plain", inputs.runs.plain, "plain-GAIL run directory (gail train --mode plain)");
+  command.add_option("--bc", inputs.runs.bc, "behaviour-cloning run directory (bc train)");
+}
+
+EvalSetup load_eval_setup(const EvalInputs& inputs, torch::Device device) {
+  if (!fs::exists(inputs.vae)) throw std::invalid_argument(inputs.vae + ": no such VAE checkpoint");
+  EvalSetup setup;
+  setup.demos = read_demos(inputs.demos);
+  setup.model = vae::load_trained_vae(inputs.vae, device);
+  setup.model->eval();
+  setup.env = demo_env(setup.demos, setup.model);
+  setup.policies = load_policies(setup.model, *setup.env, inputs.runs, device);
+  return setup;
+}
+
 namespace {
 
 void run_eval_walker(const EvalWalkerFlags& f) {
   torch::NoGradGuard no_grad;
   const auto device = parse_device(f.device);
-  if (!fs::exists(f.vae)) throw std::invalid_argument(f.vae + ": no such VAE checkpoint");
-  const DemoSet demos = read_demos(f.demos);
-  auto model = vae::load_trained_vae(f.vae, device);
-  model->eval();
-  const auto env = demo_env(demos, model);
-
-  const auto policies = load_policies(model, *env, {f.gail, f.plain, f.bc}, device);
+  auto setup = load_eval_setup(f.inputs, device);
+  const DemoSet& demos = setup.demos;
+  auto& model = setup.model;
+  const auto& env = setup.env;
+  const auto& policies = setup.policies;
 
   const auto episodes = eval::episodes_per_expert(demos, f.per_expert);
   const auto z = vae::encode_episodes(model, demos, episodes);
@@ -141,12 +161,7 @@ void add_eval_walker(CLI::App& eval) {
   auto f = std::make_shared<EvalWalkerFlags>();
   CLI::App* c = eval.add_subcommand("walker", "imitate demonstrations with the VAE, diverse-GAIL and baseline "
                                               "policies; compare their speeds with the demonstrations'");
-  c->add_option("--demos", f->demos, "demonstration file (.h5)")->required();
-  c->add_option("--vae", f->vae, "VAE checkpoint (RUN_DIR/checkpoints/latest.pt); encodes the demonstrations")
-      ->required();
-  c->add_option("--gail", f->gail, "diverse-GAIL run directory (gail train --mode diverse)");
-  c->add_option("--plain", f->plain, "plain-GAIL run directory (gail train --mode plain)");
-  c->add_option("--bc", f->bc, "behaviour-cloning run directory (bc train)");
+  add_eval_input_options(*c, f->inputs);
   c->add_option("--per-expert", f->per_expert, "demonstrations per expert (the paper: 11)")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   c->add_option("--out-dir", f->out_dir, "where the CSV, the table and the PNGs go")->required();
@@ -168,6 +183,7 @@ void add_eval_commands(CLI::App& app) {
   add_eval_walker(*eval);
   add_eval_arm(*eval);
   add_eval_body(*eval);
+  add_eval_transitions(*eval);
 }
 
 }  // namespace vaegail::cli

@@ -3,11 +3,14 @@
 // plain-GAIL and behaviour-cloning policies.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <torch/torch.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "data/demos.h"
 #include "env/env.h"
 #include "eval/walker_eval.h"
 #include "vae/trajectory_vae.h"
@@ -20,5 +23,23 @@ struct PolicyRuns {
 
 std::vector<eval::NamedPolicy> load_policies(const vae::TrajectoryVae& model, const Env& env, const PolicyRuns& runs,
                                              torch::Device device);
+
+// What an evaluation of imitations reads: --demos, --vae (both required), --gail, --plain, --bc.
+struct EvalInputs {
+  std::string demos, vae;
+  PolicyRuns runs;
+};
+void add_eval_input_options(CLI::App& command, EvalInputs& inputs);
+
+// What an evaluation of imitations starts from: the demonstrations, the VAE that encodes them (in
+// eval mode), the environment they were recorded in and the policies compared.
+struct EvalSetup {
+  DemoSet demos;
+  vae::TrajectoryVae model{nullptr};
+  std::unique_ptr<Env> env;
+  std::vector<eval::NamedPolicy> policies;
+};
+// Throws one line naming a missing VAE checkpoint, an unreadable file or a mismatched model.
+EvalSetup load_eval_setup(const EvalInputs& inputs, torch::Device device);
 
 }  // namespace vaegail::cli

@@ -1,5 +1,5 @@
 // Videos of demonstrations beside their imitations (render/episode_video.h), shared by
-// `vaegail render`, `eval walker --videos`, `eval arm --videos` and quickstart.
+// `vaegail render`, `eval walker --videos`, `eval arm --videos`, `eval transitions --videos` and quickstart.
 #pragma once
 
 #include <CLI/CLI.hpp>

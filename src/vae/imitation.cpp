@@ -19,12 +19,13 @@ int feature_index(const Env& env, const std::string& name) {
   return it == names.end() ? -1 : static_cast<int>(it - names.begin());
 }
 
-bool fell(const Episode& e, int fallen_feature, int n_features) {
-  if (!e.terminations.empty() && e.terminations.back()) return true;
-  if (fallen_feature < 0) return false;
-  for (size_t r = 0; r * n_features < e.features.size(); ++r)
-    if (e.features[r * n_features + fallen_feature] > 0.5) return true;
-  return false;
+// The first step whose state had fallen, or the terminating step; -1 when neither.
+int fall_step(const Episode& e, int fallen_feature, int n_features) {
+  if (fallen_feature >= 0)
+    for (size_t r = 0; r * n_features < e.features.size(); ++r)
+      if (e.features[r * n_features + fallen_feature] > 0.5) return static_cast<int>(r);
+  if (!e.terminations.empty() && e.terminations.back()) return e.length();
+  return -1;
 }
 
 }  // namespace
@@ -44,11 +45,23 @@ std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
   const int64_t M = static_cast<int64_t>(starts.size());
   if (z.dim() != 2 || z.size(0) != M)
     throw std::invalid_argument("roll_out_latent_policy: z must be [" + std::to_string(M) + ", Z]");
+  const auto z_cpu = z.detach().to(torch::kCPU, torch::kFloat).contiguous();
+  const LatentSchedule fixed = [&z_cpu](const torch::Tensor& rows, const torch::Tensor&) {
+    return z_cpu.index_select(0, rows);
+  };
+  return roll_out_latent_policy(prototype, starts, fixed, policy, options, progress);
+}
+
+std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
+                                                     const std::vector<RolloutStart>& starts,
+                                                     const LatentSchedule& z,
+                                                     const LatentPolicy& policy,
+                                                     const ImitationOptions& options,
+                                                     Progress* progress) {
   const int speed = options.speed_feature.empty() ? -1 : feature_index(prototype, options.speed_feature);
   if (speed < 0 && !options.speed_feature.empty())
     throw std::invalid_argument("roll_out_latent_policy: env '" + prototype.id() +
                                 "' has no feature '" + options.speed_feature + "'");
-  const auto z_cpu = z.detach().to(torch::kCPU, torch::kFloat).contiguous();
   const int obs_dim = prototype.obs_dim(), act_dim = prototype.act_dim();
 
   RecordRequest request;
@@ -58,12 +71,13 @@ std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
   }
   request.num_envs = options.num_envs;
   request.num_threads = options.num_threads;
-  const BatchPolicy batch = [&](int n, const float* observations, const int* episodes, const int*,
+  const BatchPolicy batch = [&](int n, const float* observations, const int* episodes, const int* steps,
                                 float* actions) {
     torch::NoGradGuard no_grad;
     const auto obs = torch::from_blob(const_cast<float*>(observations), {n, obs_dim});
     const auto rows = torch::from_blob(const_cast<int*>(episodes), {n}, torch::kInt).to(torch::kLong);
-    const auto a = policy(obs, z_cpu.index_select(0, rows)).to(torch::kCPU, torch::kFloat).contiguous();
+    const auto taken = torch::from_blob(const_cast<int*>(steps), {n}, torch::kInt).to(torch::kLong);
+    const auto a = policy(obs, z(rows, taken)).to(torch::kCPU, torch::kFloat).contiguous();
     if (a.dim() != 2 || a.size(0) != n || a.size(1) != act_dim)
       throw std::invalid_argument("roll_out_latent_policy: the policy must return [N, " +
                                   std::to_string(act_dim) + "] actions");
@@ -77,7 +91,8 @@ std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
   for (auto& e : episodes) {
     ImitationOutcome o;
     if (speed >= 0) o.achieved_speed = e.mean_feature(speed, n_features);
-    o.fell = fell(e, fallen, n_features);
+    o.fall_step = fall_step(e, fallen, n_features);
+    o.fell = o.fall_step >= 0;
     o.episode = std::move(e);
     out.push_back(std::move(o));
   }

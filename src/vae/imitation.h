@@ -6,6 +6,7 @@
 #include <torch/torch.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@ struct ImitationOptions {
 struct ImitationOutcome {
   double achieved_speed = 0;  // mean of speed_feature over the states the actions reached (0 without)
   bool fell = false;
+  int fall_step = -1;  // the first step (0..T) whose state had fallen, or T on a termination; -1: none
   Episode episode;            // the whole rollout
 };
 
@@ -45,6 +47,19 @@ struct ImitationOutcome {
 std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
                                                      const std::vector<RolloutStart>& starts,
                                                      const torch::Tensor& z,
+                                                     const LatentPolicy& policy,
+                                                     const ImitationOptions& options = {},
+                                                     Progress* progress = nullptr);
+
+// z for a batch of the running episodes at the control step each has reached: rows [n] (long,
+// indices into the starts) and steps [n] (long, actions taken so far) -> z [n, Z] float CPU.
+using LatentSchedule = std::function<torch::Tensor(const torch::Tensor& rows, const torch::Tensor& steps)>;
+
+// As above, with the conditioning chosen per step (a transition between behaviours,
+// eval/transitions.h); the fixed-z rollout is the schedule that ignores the step.
+std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
+                                                     const std::vector<RolloutStart>& starts,
+                                                     const LatentSchedule& z,
                                                      const LatentPolicy& policy,
                                                      const ImitationOptions& options = {},
                                                      Progress* progress = nullptr);
