@@ -25,6 +25,8 @@ Ppo::Ppo(std::shared_ptr<StochasticPolicy> policy, std::shared_ptr<Critic> criti
 PpoStats Ppo::update(const UpdateBatch& batch) {
   PpoStats stats;
   for (int epoch = 0; epoch < options_.epochs && !stats.stopped_early; ++epoch) {
+    double epoch_kl = 0.0;
+    int epoch_steps = 0;
     for (const auto& mb : batch.minibatches(options_.minibatches, generator_)) {
       // Means over the run's minibatch: this rank's sums over the global count, added over ranks.
       const auto mean = [&](const torch::Tensor& per_row) { return per_row.sum() / mb.global_size(); };
@@ -39,10 +41,6 @@ PpoStats Ppo::update(const UpdateBatch& batch) {
       const auto means = all_sum(torch::stack({policy_loss, value_loss, entropy, mean((ratio - 1) - log_ratio),
                                                clip_fraction}).detach().to(torch::kFloat64));
       const double approx_kl = means[3].item<double>();
-      if (options_.target_kl > 0 && approx_kl > 1.5 * options_.target_kl) {
-        stats.stopped_early = true;
-        break;
-      }
 
       optimizer_.zero_grad();
       (policy_loss + options_.value_coef * value_loss - options_.entropy_coef * entropy).backward();
@@ -56,7 +54,13 @@ PpoStats Ppo::update(const UpdateBatch& batch) {
       stats.approx_kl += approx_kl;
       stats.clip_fraction += means[4].item<double>();
       ++stats.minibatch_steps;
+      epoch_kl += approx_kl;
+      ++epoch_steps;
     }
+    // The stop reads the whole epoch's KL, as CleanRL does: one minibatch's estimate (128 rows
+    // of a 56-dimensional action for the humanoid) is noisy enough to end whole updates after a
+    // single step, the critic's training with them.
+    stats.stopped_early = options_.target_kl > 0 && epoch_steps > 0 && epoch_kl / epoch_steps > 1.5 * options_.target_kl;
   }
   if (stats.minibatch_steps > 0) {
     for (double* mean : {&stats.policy_loss, &stats.value_loss, &stats.entropy, &stats.approx_kl, &stats.clip_fraction})

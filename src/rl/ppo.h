@@ -20,7 +20,7 @@ struct PpoOptions {
   double value_coef = 0.5;
   double entropy_coef = 0.0;
   double max_grad_norm = 0.5;
-  double target_kl = 0.0;  // > 0: stop the update once the approximate KL exceeds 1.5·target_kl
+  double target_kl = 0.0;  // > 0: stop after an epoch whose mean approximate KL exceeds 1.5·target_kl
   std::uint64_t seed = 0;  // minibatch shuffling
 };
 

@@ -20,6 +20,8 @@ TEST(Ppo, TargetKlStopsTheUpdateEarly) {
   EXPECT_TRUE(stats.stopped_early);
   EXPECT_GT(stats.minibatch_steps, 0);
   EXPECT_LT(stats.minibatch_steps, options.epochs * options.minibatches);
+  // The stop is read at an epoch's end, never inside one.
+  EXPECT_EQ(stats.minibatch_steps % options.minibatches, 0);
 }
 
 }  // namespace
