@@ -137,6 +137,10 @@ expect_error "--config must give a 'grid' or 'grids'" "$tmp/h" -- experts train 
   "$v" demos styles --demos "$tmp/h.h5" > "$tmp/stdout" 2>&1 && grep -q "of 2 held-out episodes named right" "$tmp/stdout" ||
   fail "demos collect --task humanoid, demos styles: $(cat "$tmp/stdout")"
 expect_error "demos styles reads humanoid demonstrations" "" -- demos styles --demos "$tmp/one.h5"
+"$v" experts plan --styles 0 3 --steps 2 --samples 2 --horizon 3 --csv "$tmp/plan.csv" > "$tmp/stdout" 2>&1 &&
+  grep -q "^drunk " "$tmp/stdout" && [ "$(wc -l < "$tmp/plan.csv")" -eq 3 ] ||
+  fail "experts plan: $(cat "$tmp/stdout")"
+expect_error "--styles: 8 is not a style index (0 to 7)" "" -- experts plan --styles 8
 
 # ---- the reproduce scripts call commands and options that exist ------------------------
 # Every vaegail line a script prints under --dry-run names a command whose --help lists each of its options
