@@ -400,23 +400,40 @@ void add_interpolate(CLI::App& vae) {
 // ---- bench vae ------------------------------------------------------------------------
 struct BenchFlags {
   std::string preset = "walker";
-  int state_dim = 18, action_dim = 6;
+  int state_dim = 0, action_dim = 0, steps = 0;  // 0: the preset body's
   vae::VaeBenchOptions bench;
 };
+
+// Each preset's body and data set: its observation and action sizes, episode length and the
+// number of training episodes an epoch is projected for (walker: 60 experts x 20 episodes).
+struct BenchShape {
+  int state_dim, action_dim, steps, epoch_episodes;
+};
+BenchShape bench_shape(const std::string& preset) {
+  if (preset == "arm" || preset == "jaco") return {21, 9, 50, 1800};
+  if (preset == "humanoid") return {137, 56, 334, 250};
+  return {18, 6, 400, 1200};
+}
 
 void add_bench_vae(CLI::App& bench) {
   auto f = std::make_shared<BenchFlags>();
   CLI::App* c = bench.add_subcommand("vae", "VAE training throughput vs this machine's sgemm; fused WaveNet kernel vs conv1d");
   c->add_option("--preset", f->preset, "network sizes of the paper's Table 1")
       ->check(CLI::IsMember({"walker", "arm", "jaco", "humanoid"}))->capture_default_str();
-  c->add_option("--state-dim", f->state_dim, "state components (walker: 18)")->check(CLI::Range(1, 1 << 16))->capture_default_str();
-  c->add_option("--action-dim", f->action_dim, "action components (walker: 6)")->check(CLI::Range(1, 1 << 16))->capture_default_str();
+  c->add_option("--state-dim", f->state_dim, "state components (default: the preset body's: walker 18, arm 21, humanoid 137)")
+      ->check(CLI::Range(1, 1 << 16));
+  c->add_option("--action-dim", f->action_dim, "action components (default: walker 6, arm 9, humanoid 56)")->check(CLI::Range(1, 1 << 16));
   c->add_option("--batch", f->bench.batch, "trajectories per step")->check(CLI::Range(1, 1 << 16))->capture_default_str();
-  c->add_option("--steps", f->bench.steps, "steps per trajectory")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  c->add_option("--steps", f->steps, "steps per trajectory (default: the preset body's episode: 400, 50, 334)")->check(CLI::Range(1, 1 << 20));
   c->add_option("--seconds", f->bench.seconds, "measuring time per part (after one untimed run)")
       ->check(CLI::Range(0.0, 3600.0))->capture_default_str();
   c->callback([f] {
-    f->bench.config = vae::VaeConfig::preset(f->preset, f->state_dim, f->action_dim);
+    const BenchShape shape = bench_shape(f->preset);
+    f->bench.steps = f->steps ? f->steps : shape.steps;
+    f->bench.epoch_steps = shape.steps;
+    f->bench.epoch_episodes = shape.epoch_episodes;
+    f->bench.config = vae::VaeConfig::preset(f->preset, f->state_dim ? f->state_dim : shape.state_dim,
+                                             f->action_dim ? f->action_dim : shape.action_dim);
     const auto r = vae::run_vae_bench(f->bench);
     std::fputs(vae::format_vae_bench(f->bench, r).c_str(), stdout);
   });
