@@ -86,13 +86,25 @@ tiny='{"lstm_hidden": 16, "latent_dim": 4, "action_hidden": [32, 32], "wavenet_c
 echo "$tiny" > "$tmp/tiny.json"
 mkdir -p "$tmp/elsewhere"
 run_in() { (cd "$1" && shift && "$v" "$@") > "$tmp/stdout" 2>&1 || fail "vaegail ${*:2}: $(tail -1 "$tmp/stdout")"; }
-run_in "$root" env rollout --task docs/own_body/hopper.xml --episodes 8 --seed 3 --out "$tmp/body.h5"
+run_in "$root" env rollout --task docs/own_body/hopper.xml --policy gait --styles 4 --episodes 8 --seed 3 \
+  --out "$tmp/body.h5"
+grep -qE '^2 +hop +2 +0 ' "$tmp/stdout" ||
+  fail "env rollout --policy gait: no hop row without falls: $(cat "$tmp/stdout")"
+expect_error "--styles: Value 0 not in range" "$tmp/b.h5" -- env rollout --task "$body" --policy gait --styles 0 \
+  --out "$tmp/b.h5"
+expect_error "defines 4 gait styles (vaegail_gait_style_*), fewer than the 5 asked for" "$tmp/b.h5" -- \
+  env rollout --task "$body" --policy gait --styles 5 --out "$tmp/b.h5"
+expect_error "--styles is for --policy gait" "$tmp/b.h5" -- env rollout --task "$body" --styles 2 --out "$tmp/b.h5"
+sed 's/<motor name="hip_motor" joint="hip"/<motor name="hip_motor" joint="rootx"/' "$body" > "$tmp/slide_body.xml"
+expect_error "actuator 'hip_motor' is not a motor on a hinge joint" "$tmp/b.h5" -- \
+  env rollout --task "$tmp/slide_body.xml" --policy gait --out "$tmp/b.h5"
+expect_error "task 'walker' cannot record a style context" "$tmp/b.h5" -- env rollout --policy gait --out "$tmp/b.h5"
 run_in "$tmp/elsewhere" vae train --demos "$tmp/body.h5" --run-dir "$tmp/body_vae" --config "$tmp/tiny.json" --epochs 1
 run_in "$tmp/elsewhere" gail train --demos "$tmp/body.h5" --vae "$tmp/body_vae/checkpoints/latest.pt" \
   --run-dir "$tmp/body_gail" --iterations 1 --envs 4
 run_in "$tmp/elsewhere" eval body --demos "$tmp/body.h5" --vae "$tmp/body_vae/checkpoints/latest.pt" \
   --gail "$tmp/body_gail" --per-expert 3 --out-dir "$tmp/body_eval"
-grep -q '^| diverse_gail | 3 |' "$tmp/body_eval/summary.md" && grep -q 'error_torso_height' "$tmp/body_eval/imitation.csv" ||
+grep -q '^| diverse_gail | 8 |' "$tmp/body_eval/summary.md" && grep -q 'error_torso_height' "$tmp/body_eval/imitation.csv" ||
   fail "eval body: no diverse_gail row or torso_height error in $tmp/body_eval"
 # transitions need a task's notion of behaviour (eval/transitions.h): a body of one's own has none
 expect_error "has no behaviour judge for transitions" "$tmp/body_transitions" -- eval transitions \

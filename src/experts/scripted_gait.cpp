@@ -135,7 +135,8 @@ std::vector<GaitStyle> gait_styles(const mjModel* m, const std::string& model_na
   if (count < 1) throw std::invalid_argument("--styles must be at least 1, not " + std::to_string(count));
   std::vector<GaitStyle> styles;
   for (int i = 0; i < m->nnumeric; ++i)
-    if (starts_with(mj_id2name(m, mjOBJ_NUMERIC, i), kStylePrefix)) styles.push_back(style_from_custom(m, model_name, i));
+    if (starts_with(mj_id2name(m, mjOBJ_NUMERIC, i), kStylePrefix))
+      styles.push_back(style_from_custom(m, model_name, i));
   if (styles.empty()) {
     for (int k = 0; k < count; ++k) styles.push_back(drawn_style(m, model_name, knobs, seed, k));
     return styles;

@@ -142,8 +142,8 @@ TEST(GaitStyles, ReadsTheMjcfsStylesInOrderAndCountsThem) {
 TEST(GaitStyles, DrawnFromTheSeedWithinTheJointRanges) {
   const auto model = body();
   const GaitKnobs knobs;
-  const auto a = gait_styles(model->get(), "gait_body.xml", 4, 7), again = gait_styles(model->get(), "gait_body.xml", 4, 7),
-             other = gait_styles(model->get(), "gait_body.xml", 4, 8);
+  auto drawn = [&](std::uint64_t seed) { return gait_styles(model->get(), "gait_body.xml", 4, seed); };
+  const auto a = drawn(7), again = drawn(7), other = drawn(8);
   ASSERT_EQ(a.size(), 4u);
   for (size_t k = 0; k < a.size(); ++k) {
     EXPECT_EQ(a[k].frequency, again[k].frequency);
