@@ -42,17 +42,20 @@ class VAEGAIL_CONTROLLER_API Controller {
   // "humanoid") or the path of the MJCF file of your own body. It gives the observation and
   // action sizes (checked against the policy's), observe() and control_timestep().
 
-  // The VAE policy of a `vaegail vae train` run: its checkpoint (RUN/checkpoints/latest.pt).
-  // The action decoder's mean acts; the encoder embeds.
-  static Controller load_vae(const std::string& vae_checkpoint, const std::string& task);
-  // A `vaegail gail train` run directory. Diverse mode acts with the fine-tuned residual policy
-  // and embeds with the VAE it was fine-tuned on (whose weights the run's checkpoint holds; the
-  // VAE checkpoint supplies the sizes): `vae_checkpoint`, or when empty the run's recorded
-  // vae_path. Plain mode has no embedding and ignores `vae_checkpoint`.
-  static Controller load_gail(const std::string& run_dir, const std::string& task,
+  // Each loader takes a run as training left it or as `vaegail export` ships it: the run
+  // directory, its checkpoint (RUN/checkpoints/latest.pt) or its weights file (RUN/weights.pt).
+
+  // The VAE policy of a `vaegail vae train` run. The action decoder's mean acts; the encoder
+  // embeds.
+  static Controller load_vae(const std::string& vae_run, const std::string& task);
+  // A `vaegail gail train` run. Diverse mode acts with the fine-tuned residual policy and embeds
+  // with the VAE it was fine-tuned on, whose weights the run's own file holds. A weights file
+  // records that VAE's sizes; for a checkpoint they come from `vae_checkpoint` (a VAE run), or
+  // when empty from the run's recorded vae_path. Plain mode has no embedding.
+  static Controller load_gail(const std::string& run, const std::string& task,
                               const std::string& vae_checkpoint = "");
-  // A `vaegail bc train` run directory: no embedding.
-  static Controller load_bc(const std::string& run_dir, const std::string& task);
+  // A `vaegail bc train` run: no embedding.
+  static Controller load_bc(const std::string& run, const std::string& task);
 
   Controller(Controller&&) noexcept;
   Controller& operator=(Controller&&) noexcept;

@@ -27,6 +27,7 @@ std::unique_ptr<CLI::App> make_app() {
   add_gail_commands(*app);
   add_eval_commands(*app);
   add_render_commands(*app);  // after bench: adds `bench render`
+  add_export_command(*app);
   return app;
 }
 

@@ -116,6 +116,23 @@ expect_error "not on --task walker (a built-in task)" "$tmp/g" -- gail train --d
   --vae "$tmp/body_vae/checkpoints/latest.pt" --run-dir "$tmp/g" --iterations 1 --task walker
 expect_error "cannot load MJCF model" "$tmp/b.h5" -- env rollout --task "$tmp/missing.xml" --out "$tmp/b.h5"
 
+# ---- export: weights files that every loader takes ----------------------------------------
+run_in "$tmp/elsewhere" export --run-dir "$tmp/body_vae"
+run_in "$tmp/elsewhere" export --run-dir "$tmp/body_gail" --out "$tmp/body_gail.pt"
+run_in "$tmp" vae embed --checkpoint "$tmp/body_vae" --demos "$tmp/body.h5" --out "$tmp/embed_run.csv"
+run_in "$tmp" vae embed --checkpoint "$tmp/body_vae/weights.pt" --demos "$tmp/body.h5" --out "$tmp/embed_weights.csv"
+cmp -s "$tmp/embed_run.csv" "$tmp/embed_weights.csv" || fail "vae embed: the exported VAE embeds otherwise"
+run_in "$tmp/elsewhere" eval body --demos "$tmp/body.h5" --vae "$tmp/body_vae/weights.pt" --gail "$tmp/body_gail.pt" \
+  --per-expert 3 --out-dir "$tmp/body_eval_weights"
+cmp -s "$tmp/body_eval/imitation.csv" "$tmp/body_eval_weights/imitation.csv" ||
+  fail "eval body: the exported VAE and diverse-GAIL policy imitate otherwise"
+expect_error "$tmp/missing: no such run directory" "" -- export --run-dir "$tmp/missing"
+head -c 2000 "$tmp/body_gail.pt" > "$tmp/truncated.pt"
+expect_error "truncated.pt: damaged checkpoint" "$tmp/e" -- eval body --demos "$tmp/body.h5" \
+  --vae "$tmp/body_vae/weights.pt" --gail "$tmp/truncated.pt" --out-dir "$tmp/e"
+expect_error "body_gail.pt: the weights of a gail run, not of a VAE" "$tmp/e.csv" -- \
+  vae embed --checkpoint "$tmp/body_gail.pt" --demos "$tmp/body.h5" --out "$tmp/e.csv"
+
 # ---- import and export ----------------------------------------------------------------
 run_in "$tmp" data export "$tmp/body.h5" --minari "$tmp/body_minari"
 run_in "$tmp" data import "$tmp/body_minari" --out "$tmp/body_back.h5"

@@ -19,6 +19,7 @@ void add_eval_arm(CLI::App& eval);
 void add_eval_body(CLI::App& eval);
 void add_eval_transitions(CLI::App& eval);
 void add_render_commands(CLI::App& app);  // render, bench render
+void add_export_command(CLI::App& app);  // export: a run's weights file
 
 struct TaskOptions;
 // Flags every command that simulates shares: which task, and how episodes end.

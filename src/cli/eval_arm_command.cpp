@@ -277,8 +277,10 @@ void add_eval_arm(CLI::App& eval) {
   CLI::App* c = eval.add_subcommand("arm", "imitate the arm's test demonstrations with the VAE policy (final "
                                            "end-point distance) and interpolate between them in latent space");
   c->add_option("--demos", f->demos, "arm demonstration file (.h5) with the test experts marked held_out")->required();
-  auto* vae = c->add_option("--vae", f->vae, "VAE checkpoint (RUN_DIR/checkpoints/latest.pt)");
-  auto* gail = c->add_option("--gail", f->gail, "a diverse-GAIL run directory on the same VAE: its policy imitates instead of the VAE's");
+  auto* vae = c->add_option("--vae", f->vae, "VAE run: its directory, checkpoints/latest.pt or weights.pt");
+  auto* gail = c->add_option("--gail", f->gail,
+                              "a diverse-GAIL run (directory, checkpoint or weights.pt) on the same VAE: its policy "
+                              "imitates instead of the VAE's");
   auto* blend = c->add_flag("--joint-blend", f->joint_blend,
                             "reference without a VAE: z is each demonstration's last joint command and the policy holds "
                             "it, so interpolation blends the two final commands in joint space");

@@ -88,11 +88,11 @@ std::vector<eval::NamedPolicy> load_policies(const vae::TrajectoryVae& model, co
 void add_eval_input_options(CLI::App& command, EvalInputs& inputs) {
   command.add_option("--demos", inputs.demos, "demonstration file (.h5); its body and task are rebuilt from it")
       ->required();
-  command.add_option("--vae", inputs.vae, "VAE checkpoint (RUN_DIR/checkpoints/latest.pt); encodes the demonstrations")
+  command.add_option("--vae", inputs.vae, "VAE run (directory, checkpoints/latest.pt or weights.pt); encodes the demonstrations")
       ->required();
-  command.add_option("--gail", inputs.runs.gail, "diverse-GAIL run directory (gail train --mode diverse)");
-  command.add_option("--plain", inputs.runs.plain, "plain-GAIL run directory (gail train --mode plain)");
-  command.add_option("--bc", inputs.runs.bc, "behaviour-cloning run directory (bc train)");
+  command.add_option("--gail", inputs.runs.gail, "diverse-GAIL run (gail train --mode diverse): directory, checkpoint or weights.pt");
+  command.add_option("--plain", inputs.runs.plain, "plain-GAIL run (gail train --mode plain): directory, checkpoint or weights.pt");
+  command.add_option("--bc", inputs.runs.bc, "behaviour-cloning run (bc train): directory, checkpoint or weights.pt");
 }
 
 EvalSetup load_eval_setup(const EvalInputs& inputs, torch::Device device) {

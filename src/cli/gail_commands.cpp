@@ -35,7 +35,7 @@ vae::TrajectoryVae mode_vae(GailFlags& f) {
   f.options.mode = parse_gail_mode(f.mode);
   f.options.demos_path = f.demos;
   const bool diverse = f.options.mode == GailMode::Diverse;
-  if (diverse && f.vae.empty()) throw std::invalid_argument("--mode diverse needs --vae (RUN_DIR/checkpoints/latest.pt)");
+  if (diverse && f.vae.empty()) throw std::invalid_argument("--mode diverse needs --vae (a VAE run)");
   if (!diverse && !f.vae.empty()) throw std::invalid_argument("--mode plain takes no --vae");
   f.options.vae_path = f.vae;
   if (!diverse) return vae::TrajectoryVae(nullptr);
@@ -46,7 +46,7 @@ vae::TrajectoryVae mode_vae(GailFlags& f) {
 void add_mode_options(CLI::App& c, GailFlags& f) {
   c.add_option("--mode", f.mode, "diverse: VAE-conditioned policy and discriminator; plain: GAIL without z")
       ->check(CLI::IsMember({"diverse", "plain"}))->capture_default_str();
-  c.add_option("--vae", f.vae, "VAE trainer checkpoint (VAE_RUN/checkpoints/latest.pt); diverse mode");
+  c.add_option("--vae", f.vae, "VAE run (directory, checkpoints/latest.pt or weights.pt); diverse mode");
   c.add_option("--envs", f.options.num_envs, "environments, one demonstration each per episode")
       ->check(CLI::Range(1, 1 << 16))->capture_default_str();
   c.add_option("--env-threads", f.options.env_threads, "threads stepping them")

@@ -87,7 +87,7 @@ void add_quickstart_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("quickstart", "the whole walker flow at small scale on the published data and VAE");
   cmd->add_option("--out-dir", o->out_dir, "where outputs go")->capture_default_str();
   cmd->add_option("--demos", o->demos, "demonstration file")->capture_default_str();
-  cmd->add_option("--vae", o->vae, "trained VAE checkpoint")->capture_default_str();
+  cmd->add_option("--vae", o->vae, "trained VAE run (directory, checkpoint or weights.pt)")->capture_default_str();
   cmd->add_option("--gail-minutes", o->gail_minutes, "diverse-GAIL fine-tuning time")
       ->check(CLI::PositiveNumber)->capture_default_str();
   cmd->add_option("--plain-minutes", o->plain_minutes, "plain-GAIL training time")

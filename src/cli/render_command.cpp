@@ -75,10 +75,10 @@ void add_render(CLI::App& app) {
   c->add_option("--episodes", f->episodes, "episode indices in the file, one row each (e.g. --episodes 3 17)")
       ->required()->check(CLI::NonNegativeNumber);
   add_demo_task_option(*c, f->task);
-  c->add_option("--vae", f->vae, "VAE checkpoint: adds the VAE policy's imitation (and encodes for --gail)");
-  c->add_option("--gail", f->gail, "diverse-GAIL run directory on the same VAE: adds its imitation");
-  c->add_option("--plain", f->plain, "plain-GAIL run directory: adds its rollout from the same start");
-  c->add_option("--bc", f->bc, "behaviour-cloning run directory: adds its rollout from the same start");
+  c->add_option("--vae", f->vae, "VAE run (directory, checkpoint or weights.pt): adds the VAE policy's imitation (and encodes for --gail)");
+  c->add_option("--gail", f->gail, "diverse-GAIL run (directory, checkpoint or weights.pt) on the same VAE: adds its imitation");
+  c->add_option("--plain", f->plain, "plain-GAIL run (directory, checkpoint or weights.pt): adds its rollout from the same start");
+  c->add_option("--bc", f->bc, "behaviour-cloning run (directory, checkpoint or weights.pt): adds its rollout from the same start");
   c->add_option("--expert", f->expert, "expert run directory (experts/walker/ID): adds its rollout from the same "
                                        "start, conditioned on the demonstration's context");
   c->add_option("--out", f->out, "the video (.mp4)")->required();

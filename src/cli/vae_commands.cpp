@@ -60,7 +60,7 @@ struct ModelFlags {
 };
 
 void add_model_flags(CLI::App& command, ModelFlags& f) {
-  command.add_option("--checkpoint", f.checkpoint, "trainer checkpoint (RUN_DIR/checkpoints/latest.pt)")->required();
+  command.add_option("--checkpoint", f.checkpoint, "VAE run: its directory, checkpoints/latest.pt or weights.pt")->required();
   command.add_option("--demos", f.demos, "demonstration file (.h5)")->required();
   add_device_option(command, f.device, kDeviceHelp);
 }

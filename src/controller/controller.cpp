@@ -65,32 +65,37 @@ Controller::Controller(Controller&&) noexcept = default;
 Controller& Controller::operator=(Controller&&) noexcept = default;
 Controller::~Controller() = default;
 
-Controller Controller::load_vae(const std::string& vae_checkpoint, const std::string& task) {
+Controller Controller::load_vae(const std::string& vae_run, const std::string& task) {
   auto impl = std::make_unique<Impl>();
   impl->env = task_env(task);
-  impl->vae = load_vae_for(vae_checkpoint, *impl->env);
+  impl->vae = load_vae_for(vae_run, *impl->env);
   impl->policy = vae::vae_mean_policy(impl->vae, torch::kCPU);
   return Controller(std::move(impl));
 }
 
-Controller Controller::load_gail(const std::string& run_dir, const std::string& task,
+Controller Controller::load_gail(const std::string& run, const std::string& task,
                                  const std::string& vae_checkpoint) {
   auto impl = std::make_unique<Impl>();
   impl->env = task_env(task);
-  const auto options = read_run_config<GailOptions>(run_dir);
-  if (options.mode == GailMode::Diverse)
+  const RunFile file = open_run(run, "gail");
+  const auto options = run_options<GailOptions>(file);
+  // A weights file sizes its VAE itself; a trainer checkpoint needs the VAE's own file for that.
+  impl->vae = recorded_vae(file);
+  if (options.mode == GailMode::Diverse && impl->vae.is_empty())
     impl->vae = load_vae_for(vae_checkpoint.empty() ? options.vae_path : vae_checkpoint, *impl->env);
-  // The agent's checkpoint holds the frozen VAE too: loading it sets the encoder's weights to
-  // the run's own.
-  const auto agent = load_gail_agent(run_dir, impl->env->obs_dim(), impl->env->act_dim(), impl->vae, torch::kCPU);
+  else if (!impl->vae.is_empty())
+    check_vae_sizes(file.path, impl->vae, *impl->env);
+  // The agent's weights hold the frozen VAE too: loading them sets the encoder's weights to the
+  // run's own.
+  const auto agent = load_gail_agent(file.path, impl->env->obs_dim(), impl->env->act_dim(), impl->vae, torch::kCPU);
   impl->policy = agent_mean_policy(agent);
   return Controller(std::move(impl));
 }
 
-Controller Controller::load_bc(const std::string& run_dir, const std::string& task) {
+Controller Controller::load_bc(const std::string& run, const std::string& task) {
   auto impl = std::make_unique<Impl>();
   impl->env = task_env(task);
-  impl->policy = agent_mean_policy(load_bc_agent(run_dir, impl->env->obs_dim(), impl->env->act_dim(), torch::kCPU));
+  impl->policy = agent_mean_policy(load_bc_agent(run, impl->env->obs_dim(), impl->env->act_dim(), torch::kCPU));
   return Controller(std::move(impl));
 }
 

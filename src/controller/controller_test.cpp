@@ -4,13 +4,18 @@
 #include <mujoco/mujoco.h>
 #include <torch/torch.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "env/walker.h"
 #include "gail/bc_agent.h"
 #include "gail/gail_agent.h"
+#include "gail/weights_export.h"
+#include "util/test_error.h"
 #include "vae/trained_vae.h"
 
 namespace vaegail {
@@ -106,6 +111,37 @@ TEST(Controller, PlainGailAndBcTakeNoEmbedding) {
   expect_acts_as(bc, agent_mean_policy(load_bc_agent(kBc, 18, 6, torch::kCPU)), states, none);
 }
 
+// Two controllers of one policy: the same embedding and the same actions, bit for bit.
+void expect_same_policy(Controller& a, Controller& b, const torch::Tensor& states) {
+  const auto z = a.embed(to_vector(states));
+  EXPECT_EQ(b.embed(to_vector(states)), z);
+  for (int64_t row : {0, 7, 19}) EXPECT_EQ(b.act(to_vector(states[row]), z), a.act(to_vector(states[row]), z)) << row;
+}
+
+TEST(Controller, ThePublishedRunsExportedActAndEmbedExactlyAsTheirCheckpoints) {
+  const std::string dir = ::testing::TempDir() + "controller_exports_" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  const std::string vae_run = kSource + "/checkpoints/walker/vae";
+  export_weights(vae_run, dir + "/vae.pt");
+  export_weights(kDiverseGail, dir + "/diverse.pt", kVae);
+  export_weights(kPlainGail, dir + "/plain.pt");
+  export_weights(kBc, dir + "/bc.pt");
+  const auto states = walker_states(20, 5);
+  auto vae = Controller::load_vae(vae_run, "walker"), vae_weights = Controller::load_vae(dir + "/vae.pt", "walker");
+  expect_same_policy(vae, vae_weights, states);
+  // The diverse run's weights file holds its VAE's sizes and weights: no VAE checkpoint is given.
+  auto diverse = Controller::load_gail(kDiverseGail, "walker", kVae),
+       diverse_weights = Controller::load_gail(dir + "/diverse.pt", "walker");
+  EXPECT_EQ(diverse_weights.latent_dim(), 20);
+  expect_same_policy(diverse, diverse_weights, states);
+  auto plain = Controller::load_gail(kPlainGail, "walker"),
+       plain_weights = Controller::load_gail(dir + "/plain.pt", "walker");
+  expect_same_policy(plain, plain_weights, states);
+  auto bc = Controller::load_bc(kBc, "walker"), bc_weights = Controller::load_bc(dir + "/bc.pt", "walker");
+  expect_same_policy(bc, bc_weights, states);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Controller, ObservesAUserSimulationAsTheTrainingTaskDoes) {
   auto controller = Controller::load_vae(kVae, "walker");
   WalkerEnv env;
@@ -128,32 +164,20 @@ TEST(Controller, ObservesAUserSimulationAsTheTrainingTaskDoes) {
   mj_deleteModel(m);
 }
 
-// what() of the exception f throws, which must be one line.
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-    return what;
-  }
-  ADD_FAILURE() << "no exception";
-  return {};
-}
-
 TEST(Controller, BadInputsAreOneLineErrorsNamingWhat) {
   auto controller = Controller::load_vae(kVae, "walker");
-  EXPECT_NE(error_of([&] { controller.act(std::vector<float>(17), std::vector<float>(20)); })
+  EXPECT_NE(one_line_error_of([&] { controller.act(std::vector<float>(17), std::vector<float>(20)); })
                 .find("the observation has 17 values, the policy takes 18"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { controller.act(std::vector<float>(18), {}); }).find("z has 0 values"), std::string::npos);
-  EXPECT_NE(error_of([&] { controller.embed(std::vector<float>(20)); }).find("not a positive multiple"),
+  EXPECT_NE(one_line_error_of([&] { controller.act(std::vector<float>(18), {}); }).find("z has 0 values"),
             std::string::npos);
-  EXPECT_NE(error_of([] { Controller::load_vae("/nonexistent/latest.pt", "walker"); }).find("/nonexistent/latest.pt"),
+  EXPECT_NE(one_line_error_of([&] { controller.embed(std::vector<float>(20)); }).find("not a positive multiple"),
             std::string::npos);
-  EXPECT_NE(error_of([] { Controller::load_vae(kVae, "arm"); }).find("task 'arm'"), std::string::npos);
-  EXPECT_NE(error_of([] { Controller::load_bc("/nonexistent/run", "walker"); }).find("/nonexistent/run"),
+  EXPECT_NE(one_line_error_of([] { Controller::load_vae("/nonexistent/latest.pt", "walker"); })
+                .find("/nonexistent/latest.pt"),
+            std::string::npos);
+  EXPECT_NE(one_line_error_of([] { Controller::load_vae(kVae, "arm"); }).find("task 'arm'"), std::string::npos);
+  EXPECT_NE(one_line_error_of([] { Controller::load_bc("/nonexistent/run", "walker"); }).find("/nonexistent/run"),
             std::string::npos);
 }
 

@@ -39,11 +39,12 @@ std::shared_ptr<Agent> make_bc_agent(const BcOptions& options, const torch::Tens
   return agent;
 }
 
-std::shared_ptr<Agent> load_bc_agent(const std::string& run_dir, int obs_dim, int act_dim, torch::Device device) {
-  BcOptions options = read_run_config<BcOptions>(run_dir);
+std::shared_ptr<Agent> load_bc_agent(const std::string& run, int obs_dim, int act_dim, torch::Device device) {
+  const RunFile file = open_run(run, "bc");
+  BcOptions options = run_options<BcOptions>(file);
   options.device = device.str();
   auto agent = make_bc_agent(options, torch::zeros({2, obs_dim}), act_dim);
-  load_run_agent(run_dir, *agent, device);
+  load_run_agent(file.path, *agent, device);
   return agent;
 }
 

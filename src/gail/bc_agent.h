@@ -32,7 +32,8 @@ void from_json(const nlohmann::json& j, BcOptions& o);
 // The BC agent before training: normaliser frozen at observations' [M, obs_dim] statistics.
 std::shared_ptr<Agent> make_bc_agent(const BcOptions& options, const torch::Tensor& observations, int act_dim);
 
-// The trained agent of a `bc train` run directory, on `device`. Throws naming the file.
-std::shared_ptr<Agent> load_bc_agent(const std::string& run_dir, int obs_dim, int act_dim, torch::Device device);
+// The trained agent of a `bc train` run (its directory, RUN/checkpoints/latest.pt or its weights
+// file: gail/run_dir.h's open_run), on `device`. Throws naming the file.
+std::shared_ptr<Agent> load_bc_agent(const std::string& run, int obs_dim, int act_dim, torch::Device device);
 
 }  // namespace vaegail

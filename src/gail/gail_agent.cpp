@@ -3,7 +3,6 @@
 #include <stdexcept>
 
 #include "gail/residual_policy.h"
-#include "gail/run_dir.h"
 #include "util/rng.h"
 
 namespace vaegail {
@@ -98,15 +97,22 @@ std::shared_ptr<Agent> make_gail_agent(const GailOptions& o, int obs_dim, int ac
   return agent;
 }
 
-std::shared_ptr<Agent> load_gail_agent(const std::string& run_dir, int obs_dim, int act_dim,
+std::shared_ptr<Agent> load_gail_agent(const std::string& run, int obs_dim, int act_dim,
                                        vae::TrajectoryVae vae, torch::Device device) {
-  GailOptions options = read_run_config<GailOptions>(run_dir);
+  const RunFile file = open_run(run, "gail");
+  GailOptions options = run_options<GailOptions>(file);
   options.device = device.str();
+  if (options.mode != GailMode::Diverse) vae = vae::TrajectoryVae(nullptr);
+  else if (vae.is_empty()) vae = recorded_vae(file);
   // The normaliser's statistics come from the checkpoint; these only give it its shape.
-  auto agent = make_gail_agent(options, obs_dim, act_dim, torch::zeros({2, obs_dim}),
-                               options.mode == GailMode::Diverse ? vae : vae::TrajectoryVae(nullptr));
-  load_run_agent(run_dir, *agent, device);
+  auto agent = make_gail_agent(options, obs_dim, act_dim, torch::zeros({2, obs_dim}), vae);
+  load_run_agent(file.path, *agent, device);
   return agent;
+}
+
+vae::TrajectoryVae recorded_vae(const RunFile& run) {
+  if (run.vae_config.empty()) return vae::TrajectoryVae(nullptr);
+  return vae::TrajectoryVae(vae::VaeConfig::from_json(run.vae_config));
 }
 
 vae::LatentPolicy agent_mean_policy(std::shared_ptr<Agent> agent) {

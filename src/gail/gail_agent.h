@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gail/gail_reward.h"
+#include "gail/run_dir.h"
 #include "rl/agent.h"
 #include "vae/trained_vae.h"
 
@@ -63,10 +64,16 @@ constexpr std::uint64_t kGailInitStream = 0;
 std::shared_ptr<Agent> make_gail_agent(const GailOptions& options, int obs_dim, int act_dim,
                                        const torch::Tensor& demo_observations, vae::TrajectoryVae vae);
 
-// The trained agent of a `gail train` run directory (config.json and checkpoints/latest.pt),
-// on `device`, for evaluation; `vae` is required in diverse mode. Throws naming the file.
-std::shared_ptr<Agent> load_gail_agent(const std::string& run_dir, int obs_dim, int act_dim,
+// The trained agent of a `gail train` run (its directory, RUN/checkpoints/latest.pt or its weights
+// file: gail/run_dir.h's open_run), on `device`, for evaluation. In diverse mode the agent is
+// built on `vae`, whose weights loading replaces by the run's own frozen VAE's; it may be null
+// for a weights file, which records the VAE's sizes. Throws naming the file.
+std::shared_ptr<Agent> load_gail_agent(const std::string& run, int obs_dim, int act_dim,
                                        vae::TrajectoryVae vae, torch::Device device);
+
+// A diverse-GAIL weights file's frozen VAE, built to the sizes it records (untrained until the
+// agent is loaded on it); null for a trainer checkpoint, which records none.
+vae::TrajectoryVae recorded_vae(const RunFile& run);
 
 // An agent's mean action as a policy to roll out (vae/imitation.h); an agent trained without a
 // latent (plain GAIL, behaviour cloning) ignores z.

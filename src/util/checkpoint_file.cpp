@@ -27,6 +27,14 @@ std::string serialised(const std::string& path, const SaveToStream& save) {
 
 }  // namespace
 
+std::string model_file(const std::string& run) {
+  if (!fs::is_directory(run)) return run;
+  for (const auto& candidate : {fs::path(run) / "checkpoints" / "latest.pt", fs::path(run) / kWeightsFile})
+    if (fs::exists(candidate)) return candidate.string();
+  throw std::runtime_error(run + ": a directory with neither checkpoints/latest.pt nor " + kWeightsFile +
+                           " (not a run directory?)");
+}
+
 std::string previous_checkpoint_for(const std::string& latest) {
   fs::path previous(latest);
   return previous.replace_filename("previous" + previous.extension().string()).string();

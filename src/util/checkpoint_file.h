@@ -18,6 +18,19 @@ using SaveToStream = std::function<void(std::ostream&)>;
 // Loads one: [&](const std::string& path) { archive.load_from(path, device); ... }.
 using LoadFromFile = std::function<void(const std::string&)>;
 
+// A weights-only file (`vaegail export`): what rebuilds and runs a trained model, without the
+// optimiser state and counters that a trainer's checkpoint keeps for resuming. A LibTorch
+// archive: "kind" names the model ("vae", "gail" or "bc"), "config" is its options as JSON (what
+// sizes it), and the module lies under the name its trainer's checkpoint gives it ("model" for
+// the VAE, "agent" for a policy); a diverse-GAIL policy adds "vae_config", its frozen VAE's.
+// Written into the run directory by default, under this name.
+inline constexpr const char* kWeightsFile = "weights.pt";
+
+// The file a loader reads for `run`: a file as it is (a trainer's checkpoint or a weights file);
+// for a run directory its checkpoints/latest.pt (the newest state), else its weights file (a run
+// directory that ships only the export). A directory with neither throws one line naming it.
+std::string model_file(const std::string& run);
+
 // "previous" with latest's extension, in latest's folder: checkpoints/previous.pt.
 std::string previous_checkpoint_for(const std::string& latest);
 

@@ -54,6 +54,19 @@ TEST(CheckpointFile, ThePreviousCheckpointLiesBesideTheLatest) {
   EXPECT_EQ(previous_checkpoint_for("run/checkpoints/latest.pt"), "run/checkpoints/previous.pt");
 }
 
+TEST(CheckpointFile, ARunDirectoryMeansItsLatestCheckpointElseItsWeightsFile) {
+  const std::string run = checkpoint_dir("model_file");
+  EXPECT_EQ(error_of([&] { model_file(run); }),
+            run + ": a directory with neither checkpoints/latest.pt nor weights.pt (not a run directory?)");
+  write_file_atomically(run + "/weights.pt", "weights");
+  EXPECT_EQ(model_file(run), run + "/weights.pt");
+  fs::create_directories(run + "/checkpoints");
+  write_file_atomically(run + "/checkpoints/latest.pt", "checkpoint 1");
+  EXPECT_EQ(model_file(run), run + "/checkpoints/latest.pt");
+  EXPECT_EQ(model_file(run + "/weights.pt"), run + "/weights.pt");  // a file is taken as it is
+  EXPECT_EQ(model_file(run + "/missing.pt"), run + "/missing.pt");  // read_checkpoint names it
+}
+
 TEST(CheckpointFile, RotationKeepsTheCheckpointBefore) {
   const std::string latest = checkpoint_dir("rotation") + "/latest.pt";
   rotate_and_write(latest, saving("checkpoint 1"));

@@ -1,18 +1,21 @@
 #include "vae/trained_vae.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <vector>
 
 #include "util/checkpoint_file.h"
 
 namespace vaegail::vae {
 
-TrajectoryVae load_trained_vae(const std::string& checkpoint_path, const torch::Device& device) {
+TrajectoryVae load_trained_vae(const std::string& run, const torch::Device& device) {
   TrajectoryVae model{nullptr};
-  read_checkpoint(checkpoint_path, [&](const std::string& path) {
+  read_checkpoint(model_file(run), [&](const std::string& path) {
     torch::serialize::InputArchive archive, model_archive;
     archive.load_from(path, device);
-    c10::IValue config_json;
+    c10::IValue kind, config_json;
+    if (archive.try_read("kind", kind) && kind.toStringRef() != "vae")
+      throw std::runtime_error(path + ": the weights of a " + kind.toStringRef() + " run, not of a VAE");
     archive.read("config", config_json);
     model = TrajectoryVae(VaeConfig::from_json(config_json.toStringRef()));
     archive.read("model", model_archive);
@@ -20,6 +23,17 @@ TrajectoryVae load_trained_vae(const std::string& checkpoint_path, const torch::
   });
   model->to(device);
   return model;
+}
+
+void save_vae_weights(const TrajectoryVae& model, const std::string& path) {
+  write_checkpoint(path, [&](std::ostream& out) {
+    torch::serialize::OutputArchive archive, model_archive;
+    model->save(model_archive);
+    archive.write("kind", c10::IValue("vae"));
+    archive.write("config", c10::IValue(model->config().to_json()));
+    archive.write("model", model_archive);
+    archive.save_to(out);
+  });
 }
 
 std::pair<torch::Tensor, torch::Tensor> encode(TrajectoryVae& model, const torch::Tensor& states,

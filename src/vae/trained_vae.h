@@ -19,10 +19,15 @@ namespace vaegail::vae {
 using LatentPolicy = std::function<torch::Tensor(const torch::Tensor& observations,
                                                  const torch::Tensor& z)>;
 
-// Loads the model alone from a trainer checkpoint (config read from the checkpoint). A missing
-// or damaged file throws one line naming it (util/checkpoint_file.h).
-TrajectoryVae load_trained_vae(const std::string& checkpoint_path,
-                               const torch::Device& device = torch::kCPU);
+// Loads the model alone (config read from the file) from a `vae train` run: its directory, a
+// trainer checkpoint (RUN/checkpoints/latest.pt) or a weights file (util/checkpoint_file.h's
+// model_file). A missing or damaged file, or the weights file of another kind of model, throws
+// one line naming it.
+TrajectoryVae load_trained_vae(const std::string& run, const torch::Device& device = torch::kCPU);
+
+// Writes the weights file of `model` (kind "vae": its config and parameters, no optimiser state)
+// to `path`, atomically; a failed write throws one line naming it.
+void save_vae_weights(const TrajectoryVae& model, const std::string& path);
 
 // (mu, sigma) [M, Z] of q(z | states) for every trajectory, in batches, without gradient,
 // returned on the CPU. states [M, T+1, D] raw; step_mask [M, T] optional (as in the dataset).
