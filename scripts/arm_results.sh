@@ -12,6 +12,8 @@ run=${3:-checkpoints/arm/vae}
 v=build/vaegail
 vae=$run/checkpoints/latest.pt
 mkdir -p "$out"
+# the default demonstrations are not committed: made from the committed experts
+[ $# -ge 2 ] || [ -e "$demos" ] || scripts/reproduce/arm.sh free_pose_demos
 
 # Linear: the loss can fall below 0 (a density over normalised states; the 60-epoch vae_noise005 run did).
 $v plot curves --csv $run/metrics.csv --y train_loss,val_loss \

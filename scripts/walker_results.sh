@@ -8,6 +8,7 @@ v=build/vaegail
 demos=data/walker/demos.h5
 vae=checkpoints/walker/vae/checkpoints/latest.pt
 mkdir -p "$out"
+[ -e $demos ] || scripts/reproduce/walker.sh demos  # not committed: made from the committed experts
 
 # Section 3.1: the embedding space.
 $v vae embed --checkpoint $vae --demos $demos --out "$out/embeddings.csv"

@@ -14,6 +14,8 @@
 #              the joint-blend reference and refined z into results/arm_posture/: about 15 minutes
 #   free_pose  the earlier experts without the posture cost (experts/arm), their demonstrations, VAE and results
 #              (results/arm/): about 30 + 1 + 45 + 15 minutes
+#   free_pose_demos  the free-pose demonstrations alone, from the committed experts/arm: data/arm/demos.h5 and
+#              data/arm/demos_offset05_noise05.h5, 15 s each (scripts/arm_results.sh makes them when missing)
 #   all        experts, demos, vae, results and free_pose in order: about 3.5 hours on 2 cores
 # The experts and the VAE's config.json and metrics.csv are committed; the demonstration files and the VAE
 # checkpoint are not, so `vae results` (the default) needs about an hour. --dry-run prints the commands.
@@ -64,13 +66,17 @@ results() {
   run scripts/arm_results.sh results/arm_posture data/arm/demos_posture.h5 checkpoints/arm/vae_posture
 }
 
+free_pose_demos() {
+  collect experts/arm data/arm/demos.h5
+  collect experts/arm data/arm/demos_offset05_noise05.h5 --offset 0.5 --noise 0.5
+}
+
 free_pose() {
   run $v experts train --task arm --count 60 --seed 0 --out-dir experts/arm --jobs 2
   run_to experts/arm/eval.txt $v experts eval --dir experts/arm --json experts/arm/eval.json
-  collect experts/arm data/arm/demos.h5
-  collect experts/arm data/arm/demos_offset05_noise05.h5 --offset 0.5 --noise 0.5
+  stage free_pose_demos  # from the experts just trained (`all` lists it after free_pose for that)
   train_vae data/arm/demos_offset05_noise05.h5 checkpoints/arm/vae
   run scripts/arm_results.sh
 }
 
-run_stages experts demos vae results free_pose
+run_stages experts demos vae results free_pose free_pose_demos

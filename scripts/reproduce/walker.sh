@@ -17,9 +17,10 @@
 #            different speeds, z blended from the first's to the second's at mid-episode, for the VAE, diverse-GAIL,
 #            plain-GAIL and BC policies, into results/walker/transitions/ (two MP4s in videos/): about 4 minutes
 #   all      every stage above in order: about 3.5 hours on 2 cores
-# The experts, checkpoints and demonstration file are committed, so `results transitions` alone regenerates every
-# walker table and figure of docs/results.md; the earlier stages overwrite the committed artefacts (seeded: runs on
-# another machine or thread count may differ in the last digits). The embedding study of
+# The experts and checkpoints are committed, and every stage that reads the demonstration file (not committed)
+# makes it first when it is missing, so `results transitions` alone regenerates every walker table and figure of
+# docs/results.md; the earlier stages overwrite the committed artefacts (seeded: runs on another machine or thread
+# count may differ in the last digits; the demonstration file is byte-identical on a rerun). The embedding study of
 # docs/experiments/walker-embedding.md is scripts/reproduce/walker_embedding.sh.
 # --dry-run prints the commands without running them. Run from anywhere; paths are the repository's.
 set -euo pipefail
@@ -48,10 +49,12 @@ demos() {
 }
 
 vae() {
+  ensure $demos demos
   run $v vae train --demos $demos --run-dir $vae_run --preset walker --epochs 45 --batch-size 16 --lr 5e-4 --seed 0
 }
 
 policies() {
+  ensure $demos demos
   run $v gail train --mode diverse --demos $demos --vae $vae_run/checkpoints/latest.pt \
     --run-dir checkpoints/walker/diverse_gail --iterations 800 --envs 16 --seed 0
   run $v gail train --mode plain --demos $demos --run-dir checkpoints/walker/plain_gail --iterations 800 --envs 16 \
@@ -60,7 +63,7 @@ policies() {
 }
 
 results() {
-  ensure $demos demos  # regenerated from the committed experts when it is not in the checkout
+  ensure $demos demos
   run scripts/walker_results.sh results/walker
 }
 

@@ -39,9 +39,15 @@ expect_error() {
   fi
 }
 
-walker_demos=$root/data/walker/demos.h5 walker_vae=$root/checkpoints/walker/vae/checkpoints/latest.pt
+# Fixtures of its own, small: one demonstration of a committed walker expert and one arm episode (the published
+# demonstration files are not committed).
+walker_vae=$root/checkpoints/walker/vae/checkpoints/latest.pt
+"$v" demos collect --experts-dir "$root/experts/walker" --only speed-1_logstd-1_seed0 --episodes-per-expert 1 \
+  --out "$tmp/one.h5" > /dev/null 2>&1 ||
+  fail "demos collect --only speed-1_logstd-1_seed0"
+"$v" env rollout --task arm --episodes 1 --out "$tmp/arm.h5" > /dev/null 2>&1 || fail "env rollout --task arm"
 head -c 4096 /dev/urandom > "$tmp/random.h5"
-head -c 1000000 "$walker_demos" > "$tmp/truncated.h5"
+head -c "$(($(stat -c %s "$tmp/one.h5") / 2))" "$tmp/one.h5" > "$tmp/truncated.h5"
 printf 'episode,expert_id\n0,a\n' > "$tmp/header.csv"
 printf 'episode,expert_id,context,achieved_speed,held_out,mu_0,sigma_0\n0,a,1,1,1,nan,0.1\n' > "$tmp/nan.csv"
 out=$tmp/out.csv
@@ -52,17 +58,14 @@ expect_error "truncated.h5" "" -- data info "$tmp/truncated.h5"
 expect_error "missing.csv" "" -- vae knn --embeddings "$tmp/missing.csv"
 expect_error "header.csv: line 1" "" -- vae knn --embeddings "$tmp/header.csv"
 expect_error "nan.csv: line 2: mu_0 is not finite" "" -- vae knn --embeddings "$tmp/nan.csv"
-expect_error "missing.pt" "$out" -- vae embed --checkpoint "$tmp/missing.pt" --demos "$walker_demos" --out "$out"
+expect_error "missing.pt" "$out" -- vae embed --checkpoint "$tmp/missing.pt" --demos "$tmp/one.h5" --out "$out"
 expect_error "truncated.h5" "$out" -- vae embed --checkpoint "$walker_vae" --demos "$tmp/truncated.h5" --out "$out"
 expect_error "21/9 components, the checkpoint's VAE 18/6" "$out" -- \
-  vae embed --checkpoint "$walker_vae" --demos "$root/data/arm/demos.h5" --out "$out"
-expect_error "--bogus" "$tmp/run" -- vae train --demos "$walker_demos" --run-dir "$tmp/run" --bogus
+  vae embed --checkpoint "$walker_vae" --demos "$tmp/arm.h5" --out "$out"
+expect_error "--bogus" "$tmp/run" -- vae train --demos "$tmp/one.h5" --run-dir "$tmp/run" --bogus
 expect_error "--k" "" -- vae knn --embeddings "$tmp/nan.csv" --k 0
 
 # One training-expert episode: nothing held out for `vae embed --refine-steps` unless --refine-all.
-"$v" demos collect --experts-dir "$root/experts/walker" --only speed-1_logstd-1_seed0 --episodes-per-expert 1 \
-  --out "$tmp/one.h5" > /dev/null 2>&1 ||
-  fail "demos collect --only speed-1_logstd-1_seed0"
 expect_error "one.h5: no held-out demonstrations to refine" "$out" -- \
   vae embed --checkpoint "$walker_vae" --demos "$tmp/one.h5" --out "$out" --refine-steps 1
 "$v" vae embed --checkpoint "$walker_vae" --demos "$tmp/one.h5" --out "$out" --refine-steps 1 --refine-all \
@@ -132,6 +135,13 @@ expect_error "truncated.pt: damaged checkpoint" "$tmp/e" -- eval body --demos "$
   --vae "$tmp/body_vae/weights.pt" --gail "$tmp/truncated.pt" --out-dir "$tmp/e"
 expect_error "body_gail.pt: the weights of a gail run, not of a VAE" "$tmp/e.csv" -- \
   vae embed --checkpoint "$tmp/body_gail.pt" --demos "$tmp/body.h5" --out "$tmp/e.csv"
+
+# ---- the published demonstrations are made when missing, by walker.sh's command -----------
+# Where there are no experts the command is echoed, then fails on them.
+(cd "$tmp/elsewhere" && "$v" quickstart --out-dir "$tmp/q") > "$tmp/stdout" 2>&1
+collect=$("$root/scripts/reproduce/walker.sh" --dry-run demos | sed -n 's|^+ build/vaegail demos collect |demos collect |p')
+grep -qxF "\$ vaegail $collect" "$tmp/stdout" ||
+  fail "quickstart without data/walker/demos.h5 does not run walker.sh's demos command: $(head -3 "$tmp/stdout")"
 
 # ---- import and export ----------------------------------------------------------------
 run_in "$tmp" data export "$tmp/body.h5" --minari "$tmp/body_minari"
@@ -228,10 +238,10 @@ fi
 
 # ---- render: video with no display (Mesa's llvmpipe through EGL), every task kind ---------
 check_help render
-expect_error "demos.h5: no episode 500 (it has 500, from 0)" "$tmp/r.mp4" -- \
-  render --demos "$walker_demos" --episodes 500 --out "$tmp/r.mp4"
-expect_error "--width: must be even" "$tmp/r.mp4" -- render --demos "$walker_demos" --episodes 0 --width 33 --out "$tmp/r.mp4"
-expect_error "--gail needs --vae" "$tmp/r.mp4" -- render --demos "$walker_demos" --episodes 0 --gail "$tmp/g" --out "$tmp/r.mp4"
+expect_error "one.h5: no episode 1 (it has 1, from 0)" "$tmp/r.mp4" -- \
+  render --demos "$tmp/one.h5" --episodes 1 --out "$tmp/r.mp4"
+expect_error "--width: must be even" "$tmp/r.mp4" -- render --demos "$tmp/one.h5" --episodes 0 --width 33 --out "$tmp/r.mp4"
+expect_error "--gail needs --vae" "$tmp/r.mp4" -- render --demos "$tmp/one.h5" --episodes 0 --gail "$tmp/g" --out "$tmp/r.mp4"
 run_in "$tmp/elsewhere" render --demos "$tmp/body.h5" --episodes 0 1 --vae "$tmp/body_vae/checkpoints/latest.pt" \
   --gail "$tmp/body_gail" --width 64 --height 48 --out "$tmp/body.mp4"
 [ -s "$tmp/body.mp4" ] || fail "render of a body of one's own: no video"

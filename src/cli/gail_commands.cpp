@@ -167,6 +167,7 @@ void add_bench_gail(CLI::App& bench) {
     GailFlags flags = f->gail;
     if (flags.mode == "diverse" && flags.vae.empty()) flags.vae = kPublishedWalkerVae;
     const vae::TrajectoryVae model = mode_vae(flags);
+    ensure_published_walker_demos(flags.demos);
     const DemoSet demos = read_demos(flags.demos);
     GailBenchOptions options = f->bench;
     options.gail = flags.options;

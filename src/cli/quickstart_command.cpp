@@ -33,6 +33,7 @@ void require_file(const std::string& path, const char* what) {
 }
 
 void run_quickstart(const QuickstartOptions& o) {
+  ensure_published_walker_demos(o.demos);
   require_file(o.demos, "demonstration file");
   require_file(o.vae, "VAE checkpoint");
   std::filesystem::create_directories(o.out_dir);

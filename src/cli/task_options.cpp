@@ -1,8 +1,11 @@
 #include "cli/task_options.h"
 
+#include "cli/app.h"
 #include "cli/commands.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 #include "util/atomic_file.h"
@@ -13,6 +16,16 @@ namespace vaegail::cli {
 namespace {
 bool ends_with_xml(const std::string& s) { return s.size() >= 4 && s.compare(s.size() - 4, 4, ".xml") == 0; }
 }  // namespace
+
+void ensure_published_walker_demos(const std::string& demos) {
+  if (demos != kPublishedWalkerDemos || std::filesystem::exists(demos)) return;
+  std::printf("%s is not in this checkout: collecting it from the committed experts (under a minute)\n",
+              demos.c_str());
+  // The same command line as scripts/reproduce/walker.sh's `demos` stage.
+  run_command_line("demos collect --experts-dir experts/walker --passing experts/walker/eval.json --out " + demos +
+                   " --episodes-per-expert 20 --force"
+                   " --held-out speed-1_logstd-1_seed3 speed0_logstd-1_seed3 speed1_logstd-1_seed3");
+}
 
 EnvRequest TaskOptions::request() const {
   EnvRequest r;

@@ -28,6 +28,12 @@ struct TaskOptions {
 inline const std::string kPublishedWalkerDemos = "data/walker/demos.h5";
 inline const std::string kPublishedWalkerVae = "checkpoints/walker/vae/checkpoints/latest.pt";
 
+// The published demonstrations are not committed (docs/artefacts.md): when `demos` names them and
+// the checkout lacks them, they are made first from the committed experts by the command of
+// scripts/reproduce/walker.sh's `demos` stage (byte-identical on a rerun, under a minute), echoed
+// as a user would type it. Any other path is left to the command that reads it.
+void ensure_published_walker_demos(const std::string& demos);
+
 // "cpu" or "cuda"; throws (one line) if CUDA is asked for and this LibTorch has none.
 torch::Device parse_device(const std::string& name);
 // --device, restricted to cpu and cuda.
