@@ -17,9 +17,9 @@
 #            different speeds, z blended from the first's to the second's at mid-episode, for the VAE, diverse-GAIL,
 #            plain-GAIL and BC policies, into results/walker/transitions/ (two MP4s in videos/): about 4 minutes
 #   all      every stage above in order: about 3.5 hours on 2 cores
-# The experts and checkpoints are committed, and every stage that reads the demonstration file (not committed)
-# makes it first when it is missing, so `results transitions` alone regenerates every walker table and figure of
-# docs/results.md; the earlier stages overwrite the committed artefacts (seeded: runs on another machine or thread
+# The experts and checkpoints are committed, and every stage that reads the demonstration file (no longer committed)
+# restores the published copy from git history when it is missing (or, in a clone without that history, makes it),
+# so `results transitions` alone regenerates every walker table and figure of docs/results.md; the earlier stages overwrite the committed artefacts (seeded: runs on another machine or thread
 # count may differ in the last digits; the demonstration file is byte-identical on a rerun). The embedding study of
 # docs/experiments/walker-embedding.md is scripts/reproduce/walker_embedding.sh.
 # --dry-run prints the commands without running them. Run from anywhere; paths are the repository's.
@@ -49,12 +49,12 @@ demos() {
 }
 
 vae() {
-  ensure $demos demos
+  ensure_published $demos 993cee9 demos
   run $v vae train --demos $demos --run-dir $vae_run --preset walker --epochs 45 --batch-size 16 --lr 5e-4 --seed 0
 }
 
 policies() {
-  ensure $demos demos
+  ensure_published $demos 993cee9 demos
   run $v gail train --mode diverse --demos $demos --vae $vae_run/checkpoints/latest.pt \
     --run-dir checkpoints/walker/diverse_gail --iterations 800 --envs 16 --seed 0
   run $v gail train --mode plain --demos $demos --run-dir checkpoints/walker/plain_gail --iterations 800 --envs 16 \
@@ -63,12 +63,12 @@ policies() {
 }
 
 results() {
-  ensure $demos demos
+  ensure_published $demos 993cee9 demos
   run scripts/walker_results.sh results/walker
 }
 
 transitions() {
-  ensure $demos demos
+  ensure_published $demos 993cee9 demos
   run_to results/walker/transitions.txt $v eval transitions --demos $demos --vae $vae_run/checkpoints/latest.pt \
     --gail checkpoints/walker/diverse_gail --plain checkpoints/walker/plain_gail --bc checkpoints/walker/bc \
     --pairs 200 --seed 0 --per-expert 11 --videos 2 --out-dir results/walker/transitions
