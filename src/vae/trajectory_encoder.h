@@ -5,6 +5,8 @@
 
 #include <torch/torch.h>
 
+#include "vae/bilstm.h"
+
 namespace vaegail::vae {
 
 struct EncoderOutput {
@@ -17,17 +19,17 @@ class TrajectoryEncoderImpl : public torch::nn::Module {
   TrajectoryEncoderImpl(int64_t state_dim, int64_t hidden, int64_t latent_dim);
 
   // states [B, S, D]; mask [B, S] (bool or 0/1, true = real step, a prefix of each row) or
-  // undefined for all real. Masked steps are neither read by the LSTM (each row runs as a
-  // packed sequence of its own length, so the backward direction starts at the row's last
-  // real step) nor counted in the mean.
+  // undefined for all real. Masked steps are neither read by the LSTM (each row runs at its own
+  // length, so the backward direction starts at the row's last real step) nor counted in the
+  // mean.
   EncoderOutput forward(const torch::Tensor& states, const torch::Tensor& mask = {});
   // The pooled LSTM features [B, 2 * hidden] (the input of the final linear map).
   torch::Tensor pooled_features(const torch::Tensor& states, const torch::Tensor& mask = {});
 
-  torch::nn::LSTM& lstm() { return lstm_; }
+  BiLstm& lstm() { return lstm_; }
 
  private:
-  torch::nn::LSTM lstm_{nullptr};
+  BiLstm lstm_{nullptr};  // registered as "lstm", the stock module's name and parameters
   torch::nn::Linear head_{nullptr};
 };
 TORCH_MODULE(TrajectoryEncoder);

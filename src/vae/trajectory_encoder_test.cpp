@@ -26,7 +26,7 @@ TEST_F(TrajectoryEncoderTest, Shapes) {
 TEST_F(TrajectoryEncoderTest, PoolsTheMeanOfAllSecondLayerOutputs) {
   TrajectoryEncoder enc(5, 8, 3);
   const auto x = torch::randn({2, 9, 5});
-  const auto outputs = std::get<0>(enc->lstm()->forward(x));  // [2, 9, 16]
+  const auto outputs = enc->lstm()->forward(x, torch::full({2}, 9, torch::kLong));  // [2, 9, 16]
   EXPECT_TRUE(torch::allclose(enc->pooled_features(x), outputs.mean(1), 1e-6, 1e-6));
 }
 
