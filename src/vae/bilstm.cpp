@@ -60,14 +60,16 @@ void cell_backward(const Gates& gates, const float* tanh_c, const float* c_prev,
 
 class LstmRecurrence : public torch::autograd::Function<LstmRecurrence> {
  public:
-  static torch::Tensor forward(AutogradContext* ctx, const torch::Tensor& gates_in, const torch::Tensor& w_hh) {
+  static torch::Tensor forward(AutogradContext* ctx, const torch::Tensor& gates_in,
+                               const torch::Tensor& w_hh) {
     // The cell loops read raw float memory: CPU only (the Debian LibTorch this project builds on is).
-    TORCH_CHECK(gates_in.device().is_cpu() && w_hh.device().is_cpu() && gates_in.scalar_type() == torch::kFloat &&
-                    w_hh.scalar_type() == torch::kFloat,
+    TORCH_CHECK(gates_in.device().is_cpu() && w_hh.device().is_cpu() &&
+                    gates_in.scalar_type() == torch::kFloat && w_hh.scalar_type() == torch::kFloat,
                 "lstm_recurrence: float CPU tensors only");
     TORCH_CHECK(gates_in.dim() == 3, "lstm_recurrence: gates_in [S, B, 4H]");
     const int64_t S = gates_in.size(0), B = gates_in.size(1), H = w_hh.size(1);
-    TORCH_CHECK(gates_in.size(2) == 4 * H && w_hh.size(0) == 4 * H, "lstm_recurrence: gates_in [S, B, 4H], w_hh [4H, H]");
+    TORCH_CHECK(gates_in.size(2) == 4 * H && w_hh.size(0) == 4 * H,
+                "lstm_recurrence: gates_in [S, B, 4H], w_hh [4H, H]");
     const auto opts = gates_in.options();
     auto gates = torch::empty({S, B, 4 * H}, opts);  // activated, kept for the backward pass
     auto c = torch::empty({S, B, H}, opts), tanh_c = torch::empty({S, B, H}, opts);
@@ -154,10 +156,12 @@ BiLstmImpl::BiLstmImpl(int64_t input_size, int64_t hidden, int64_t layers) {
 }
 
 torch::Tensor BiLstmImpl::forward(const torch::Tensor& x, const torch::Tensor& lengths) {
-  TORCH_CHECK(x.dim() == 3 && lengths.dim() == 1 && lengths.size(0) == x.size(0), "BiLstm: x [B, S, D], lengths [B]");
+  TORCH_CHECK(x.dim() == 3 && lengths.dim() == 1 && lengths.size(0) == x.size(0),
+              "BiLstm: x [B, S, D], lengths [B]");
   const int64_t S = x.size(1), B = x.size(0);
   const auto len = lengths.to(x.device(), torch::kLong);
-  const auto real = (torch::arange(S, len.options()).unsqueeze(1) < len.unsqueeze(0)).unsqueeze(2);  // [S, B, 1]
+  const auto real =
+      (torch::arange(S, len.options()).unsqueeze(1) < len.unsqueeze(0)).unsqueeze(2);  // [S, B, 1]
   const auto reversed = reversal_index(len, S);
   // Time-major, padding zeroed: padded steps are computed (a row's later steps cannot reach its
   // earlier ones), but they never read the caller's padding values and their outputs are dropped.

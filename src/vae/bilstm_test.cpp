@@ -18,14 +18,16 @@ class BiLstmTest : public ::testing::Test {
 
   // The stock module the BiLstm must equal, with the BiLstm's weights.
   torch::nn::LSTM stock_copy_of(BiLstm& ours) {
-    torch::nn::LSTM stock(torch::nn::LSTMOptions(kInput, kHidden).num_layers(2).bidirectional(true).batch_first(true));
+    torch::nn::LSTM stock(
+        torch::nn::LSTMOptions(kInput, kHidden).num_layers(2).bidirectional(true).batch_first(true));
     torch::NoGradGuard no_grad;
     for (auto& p : stock->named_parameters()) p.value().copy_(ours->named_parameters()[p.key()]);
     return stock;
   }
 
   // torch::nn::LSTM on packed sequences, padded back with zeros: the reference semantics.
-  static torch::Tensor stock_forward(torch::nn::LSTM& stock, const torch::Tensor& x, const torch::Tensor& lengths) {
+  static torch::Tensor stock_forward(torch::nn::LSTM& stock, const torch::Tensor& x,
+                                     const torch::Tensor& lengths) {
     const auto packed = rnn::pack_padded_sequence(x, lengths, /*batch_first=*/true, /*enforce_sorted=*/false);
     const auto out = std::get<0>(stock->forward_with_packed_input(packed));
     return std::get<0>(rnn::pad_packed_sequence(out, /*batch_first=*/true, 0.0, x.size(1)));
@@ -36,7 +38,8 @@ class BiLstmTest : public ::testing::Test {
 
 TEST_F(BiLstmTest, HasTheStockModulesParameterNamesShapesOrderAndInitialisation) {
   torch::manual_seed(3);
-  torch::nn::LSTM stock(torch::nn::LSTMOptions(kInput, kHidden).num_layers(2).bidirectional(true).batch_first(true));
+  torch::nn::LSTM stock(
+      torch::nn::LSTMOptions(kInput, kHidden).num_layers(2).bidirectional(true).batch_first(true));
   torch::manual_seed(3);
   BiLstm ours(kInput, kHidden, 2);
   const auto a = stock->named_parameters(), b = ours->named_parameters();
@@ -82,8 +85,8 @@ TEST_F(BiLstmTest, APaddedRowEqualsTheRowRunAloneAtItsLength) {
   BiLstm ours(kInput, kHidden, 2);
   const auto row = torch::randn({1, 4, kInput});
   // Row 0: 4 real steps, then padding of large values; row 1: full of other values.
-  const auto padded = torch::cat({torch::cat({row, torch::full({1, kSteps - 4, kInput}, 1e3)}, 1),
-                                  torch::randn({1, kSteps, kInput})});
+  const auto padded = torch::cat(
+      {torch::cat({row, torch::full({1, kSteps - 4, kInput}, 1e3)}, 1), torch::randn({1, kSteps, kInput})});
   const auto both = ours->forward(padded, torch::tensor({int64_t{4}, kSteps}));
   const auto alone = ours->forward(row, torch::tensor({int64_t{4}}));
   EXPECT_LT((both[0].narrow(0, 0, 4) - alone[0]).abs().max().item<double>(), 1e-6);
@@ -113,8 +116,10 @@ TEST_F(BiLstmTest, RecurrenceGradientsEqualFiniteDifferences) {
       plus[k] += eps;
       minus[k] -= eps;
       const bool is_gates = t == &gates_in;
-      const double lp = is_gates ? loss(plus.view_as(*t), w_hh.detach()) : loss(gates_in.detach(), plus.view_as(*t));
-      const double lm = is_gates ? loss(minus.view_as(*t), w_hh.detach()) : loss(gates_in.detach(), minus.view_as(*t));
+      const double lp =
+          is_gates ? loss(plus.view_as(*t), w_hh.detach()) : loss(gates_in.detach(), plus.view_as(*t));
+      const double lm =
+          is_gates ? loss(minus.view_as(*t), w_hh.detach()) : loss(gates_in.detach(), minus.view_as(*t));
       EXPECT_NEAR(t->grad().reshape(-1)[k].item<double>(), (lp - lm) / (2 * eps), 2e-3) << k;
     }
   }
