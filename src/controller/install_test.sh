@@ -26,7 +26,12 @@ training=$(nm -C "$lib" | grep -E 'Trpo|GailTrainer|VaeTrainer|BehaviorCloning|D
 exported=$(nm -DC --defined-only "$lib" | grep ' vaegail::' | grep -v 'vaegail::Controller' || true)
 [ -z "$exported" ] || fail "libvaegail_controller exports more than the Controller: $(head -3 <<< "$exported")"
 
-cmake -S "$root/examples/controller" -B "$tmp/example" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+# The library of a sanitizer build (docs/sanitizers.md) needs the sanitizers' runtime loaded before
+# any other library: the example links it too.
+sanitizers=()
+! grep -q '^libasan' <<< "$needed" || sanitizers=(-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined)
+cmake -S "$root/examples/controller" -B "$tmp/example" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_BUILD_TYPE=Release \
+  "${sanitizers[@]}" >/dev/null
 cmake --build "$tmp/example" >/dev/null
 out=$("$tmp/example/walker_controller" "$root/models/walker.xml" "$root/examples/controller/walker_demo.txt" \
   "$root/checkpoints/walker/vae/checkpoints/latest.pt" "$root/checkpoints/walker/diverse_gail")
