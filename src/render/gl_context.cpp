@@ -6,9 +6,35 @@
 
 #include <cstdio>
 
+#if defined(__SANITIZE_ADDRESS__)
+#include <dlfcn.h>
+#include <link.h>
+
+#include <vector>
+#endif
+
 namespace vaegail::render {
 
 namespace {
+
+#if defined(__SANITIZE_ADDRESS__)
+// In the sanitizer build (docs/sanitizers.md): every library loaded so far, Mesa's driver and the
+// LLVM it draws with among them, stays loaded until the process exits. eglTerminate unloads
+// them, and then LeakSanitizer's check at exit finds the memory their globals held unreachable
+// and cannot name the module that allocated it. The names are collected first: dlopen must not
+// run inside dl_iterate_phdr, which holds the loader's lock.
+void keep_loaded_libraries() {
+  std::vector<std::string> names;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* out) {
+        if (info->dlpi_name != nullptr && info->dlpi_name[0] != '\0')
+          static_cast<std::vector<std::string>*>(out)->push_back(info->dlpi_name);
+        return 0;
+      },
+      &names);
+  for (const auto& name : names) dlopen(name.c_str(), RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
+}
+#endif
 
 [[noreturn]] void fail(const char* call) {
   char code[16];
@@ -53,6 +79,9 @@ GlContext::GlContext() {
     fail("eglMakeCurrent(no surface)");
   }
   context_ = context;
+#if defined(__SANITIZE_ADDRESS__)
+  keep_loaded_libraries();
+#endif
   const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   renderer_ = name ? name : "unknown";
 }
