@@ -192,7 +192,9 @@ for script in "$root"/scripts/reproduce/*.sh; do
   while read -r line; do
     read -ra words <<< "${line#+ }"
     if [ "${words[0]}" != build/vaegail ]; then
-      [ "${words[0]}" = cp ] || [ -x "$root/${words[0]}" ] || fail "$name calls ${words[0]}, not an executable script"
+      # a script of the repository's, or a program on the PATH (cp, git)
+      { [ -x "$root/${words[0]}" ] || { [[ ${words[0]} != */* ]] && command -v "${words[0]}" > /dev/null; }; } ||
+        fail "$name calls ${words[0]}, neither an executable script nor a program on the PATH"
       continue
     fi
     command=() i=1
