@@ -26,8 +26,9 @@ struct BcOptions {
   std::string demos_path;  // for the record
 };
 
-void to_json(nlohmann::json& j, const BcOptions& o);
-void from_json(const nlohmann::json& j, BcOptions& o);
+// config.json: every field under its own name; a missing key takes the struct's default.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(BcOptions, hidden, epochs, batch_size, learning_rate, init_log_std, seed,
+                                                device, demos_path)
 
 // The BC agent before training: normaliser frozen at observations' [M, obs_dim] statistics.
 std::shared_ptr<Agent> make_bc_agent(const BcOptions& options, const torch::Tensor& observations, int act_dim);

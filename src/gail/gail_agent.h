@@ -51,8 +51,19 @@ struct GailOptions {
   std::string demos_path, vae_path;
 };
 
-void to_json(nlohmann::json& j, const GailOptions& o);
-void from_json(const nlohmann::json& j, GailOptions& o);
+// A mode in config.json is its name; an unknown name throws parse_gail_mode's error (where
+// NLOHMANN_JSON_SERIALIZE_ENUM would read it as the first mode).
+inline void to_json(nlohmann::json& j, GailMode mode) { j = to_string(mode); }
+inline void from_json(const nlohmann::json& j, GailMode& mode) { mode = parse_gail_mode(j.get<std::string>()); }
+
+// config.json: every field under its own name; a missing key takes the struct's default, except
+// discriminator_minibatches (the adl_serializer below).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(GailOptions, mode, iterations, minutes, num_envs, env_threads,
+                                                steps_per_env, policy_hidden, critic_hidden, discriminator_hidden,
+                                                discriminator_state_indices, init_log_std, gamma, lambda, max_kl,
+                                                critic_learning_rate, discriminator_steps, discriminator_minibatches,
+                                                discriminator_learning_rate, reward_clip, seed, device, demos_path,
+                                                vae_path)
 
 // The random stream of the run's seed that draws the agent's initial weights (the trainer's
 // per-iteration streams are numbered after it).
@@ -80,3 +91,16 @@ vae::TrajectoryVae recorded_vae(const RunFile& run);
 vae::LatentPolicy agent_mean_policy(std::shared_ptr<Agent> agent);
 
 }  // namespace vaegail
+
+// Runs made before discriminator_minibatches existed trained every discriminator step on the
+// full batch: their config.json lacks the key and reads as 1, not as the default 10.
+NLOHMANN_JSON_NAMESPACE_BEGIN
+template <>
+struct adl_serializer<vaegail::GailOptions> {
+  static void to_json(json& j, const vaegail::GailOptions& o) { vaegail::to_json(j, o); }
+  static void from_json(const json& j, vaegail::GailOptions& o) {
+    vaegail::from_json(j, o);
+    if (!j.contains("discriminator_minibatches")) o.discriminator_minibatches = 1;
+  }
+};
+NLOHMANN_JSON_NAMESPACE_END
