@@ -22,32 +22,6 @@ namespace vaegail {
 
 namespace fs = std::filesystem;
 
-void to_json(nlohmann::json& j, const ExpertTrainOptions& o) {
-  j = {{"total_steps", o.total_steps}, {"num_envs", o.num_envs}, {"steps_per_env", o.steps_per_env},
-       {"env_threads", o.env_threads}, {"hidden", o.hidden}, {"gamma", o.gamma}, {"lambda", o.lambda},
-       {"learning_rate", o.learning_rate}, {"epochs", o.epochs}, {"minibatches", o.minibatches},
-       {"target_kl", o.target_kl}, {"checkpoint_every", o.checkpoint_every}, {"device", o.device},
-       {"posture_cost", o.posture_cost}};
-}
-
-void from_json(const nlohmann::json& j, ExpertTrainOptions& o) {
-  const ExpertTrainOptions d;
-  o.total_steps = j.value("total_steps", d.total_steps);
-  o.num_envs = j.value("num_envs", d.num_envs);
-  o.steps_per_env = j.value("steps_per_env", d.steps_per_env);
-  o.env_threads = j.value("env_threads", d.env_threads);
-  o.hidden = j.value("hidden", d.hidden);
-  o.gamma = j.value("gamma", d.gamma);
-  o.lambda = j.value("lambda", d.lambda);
-  o.learning_rate = j.value("learning_rate", d.learning_rate);
-  o.epochs = j.value("epochs", d.epochs);
-  o.minibatches = j.value("minibatches", d.minibatches);
-  o.target_kl = j.value("target_kl", d.target_kl);
-  o.checkpoint_every = j.value("checkpoint_every", d.checkpoint_every);
-  o.device = j.value("device", d.device);
-  o.posture_cost = j.value("posture_cost", d.posture_cost);
-}
-
 std::unique_ptr<Env> make_expert_env(const ExpertSpec& spec, double posture_cost) {
   if (spec.targets.empty()) throw std::invalid_argument(spec.id + ": no target");
   std::unique_ptr<Env> env;

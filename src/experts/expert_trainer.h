@@ -39,8 +39,11 @@ struct ExpertTrainOptions {
   double posture_cost = 0.0;  // walker only: WalkerOptions::posture_cost of the training reward (0: the published experts')
 };
 
-void to_json(nlohmann::json& j, const ExpertTrainOptions& o);
-void from_json(const nlohmann::json& j, ExpertTrainOptions& o);
+// options.json (and a config file's "training"): every field under its own name; a missing key
+// takes the struct's default.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(ExpertTrainOptions, total_steps, num_envs, steps_per_env, env_threads,
+                                                hidden, gamma, lambda, learning_rate, epochs, minibatches, target_kl,
+                                                checkpoint_every, device, posture_cost)
 
 // The environment an expert trains in, in its spec's first context: the registry's task, with
 // the walker's posture cost (throws for a posture cost on another task).
