@@ -8,6 +8,14 @@
 
 namespace vaegail::vae {
 
+// config.json: every field under its own name (from_json below says what a missing key takes).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(VaeConfig, name, state_dim, action_dim, lstm_hidden, latent_dim,
+                                                action_hidden, wavenet_channels, wavenet_layers, mixture_components,
+                                                position_embedding, action_relative_to_state,
+                                                action_std_depends_on_state, encoder_state_indices, learning_rate,
+                                                batch_size, kl_weight, weight_decay, encoder_input_noise,
+                                                lr_decay_epochs)
+
 namespace {
 
 using nlohmann::json;
@@ -76,28 +84,7 @@ void VaeConfig::validate() const {
     require(k >= 0 && k < state_dim, "action_relative_to_state entries must be state indices");
 }
 
-std::string VaeConfig::to_json() const {
-  json j = {{"name", name},
-            {"state_dim", state_dim},
-            {"action_dim", action_dim},
-            {"lstm_hidden", lstm_hidden},
-            {"latent_dim", latent_dim},
-            {"action_hidden", action_hidden},
-            {"wavenet_channels", wavenet_channels},
-            {"wavenet_layers", wavenet_layers},
-            {"mixture_components", mixture_components},
-            {"position_embedding", position_embedding},
-            {"action_relative_to_state", action_relative_to_state},
-            {"action_std_depends_on_state", action_std_depends_on_state},
-            {"encoder_state_indices", encoder_state_indices},
-            {"learning_rate", learning_rate},
-            {"batch_size", batch_size},
-            {"kl_weight", kl_weight},
-            {"weight_decay", weight_decay},
-            {"encoder_input_noise", encoder_input_noise},
-            {"lr_decay_epochs", lr_decay_epochs}};
-  return j.dump(2) + "\n";
-}
+std::string VaeConfig::to_json() const { return json(*this).dump(2) + "\n"; }
 
 VaeConfig VaeConfig::from_json(const std::string& text, const VaeConfig& defaults) {
   json j;
@@ -107,33 +94,14 @@ VaeConfig VaeConfig::from_json(const std::string& text, const VaeConfig& default
     throw std::invalid_argument(std::string("VaeConfig: not JSON: ") + e.what());
   }
   require(j.is_object(), "JSON must be an object");
+  // One key at a time, so that an error names the unknown key or the bad value.
   VaeConfig c = defaults;
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    const std::string& key = it.key();
+  for (const auto& [key, value] : j.items()) {
+    json fields = c;
+    if (!fields.contains(key)) throw std::invalid_argument("VaeConfig: unknown key '" + key + "'");
+    fields[key] = value;
     try {
-      if (key == "name") c.name = it->get<std::string>();
-      else if (key == "state_dim") c.state_dim = it->get<int>();
-      else if (key == "action_dim") c.action_dim = it->get<int>();
-      else if (key == "lstm_hidden") c.lstm_hidden = it->get<int>();
-      else if (key == "latent_dim") c.latent_dim = it->get<int>();
-      else if (key == "action_hidden") c.action_hidden = it->get<std::vector<int>>();
-      else if (key == "wavenet_channels") c.wavenet_channels = it->get<int>();
-      else if (key == "wavenet_layers") c.wavenet_layers = it->get<int>();
-      else if (key == "mixture_components") c.mixture_components = it->get<int>();
-      else if (key == "position_embedding") c.position_embedding = it->get<bool>();
-      else if (key == "action_relative_to_state")
-        c.action_relative_to_state = it->get<std::vector<int>>();
-      else if (key == "action_std_depends_on_state")
-        c.action_std_depends_on_state = it->get<bool>();
-      else if (key == "encoder_state_indices")
-        c.encoder_state_indices = it->get<std::vector<int>>();
-      else if (key == "learning_rate") c.learning_rate = it->get<double>();
-      else if (key == "batch_size") c.batch_size = it->get<int>();
-      else if (key == "kl_weight") c.kl_weight = it->get<double>();
-      else if (key == "weight_decay") c.weight_decay = it->get<double>();
-      else if (key == "encoder_input_noise") c.encoder_input_noise = it->get<double>();
-      else if (key == "lr_decay_epochs") c.lr_decay_epochs = it->get<int>();
-      else throw std::invalid_argument("VaeConfig: unknown key '" + key + "'");
+      c = fields.get<VaeConfig>();
     } catch (const json::exception& e) {
       throw std::invalid_argument("VaeConfig: bad value for '" + key + "': " + e.what());
     }
@@ -156,17 +124,6 @@ VaeConfig VaeConfig::load(const std::string& path, const VaeConfig& defaults) {
   }
 }
 
-bool VaeConfig::operator==(const VaeConfig& o) const {
-  return name == o.name && state_dim == o.state_dim && action_dim == o.action_dim &&
-         lstm_hidden == o.lstm_hidden && latent_dim == o.latent_dim &&
-         action_hidden == o.action_hidden && wavenet_channels == o.wavenet_channels &&
-         wavenet_layers == o.wavenet_layers && mixture_components == o.mixture_components &&
-         position_embedding == o.position_embedding &&
-         action_relative_to_state == o.action_relative_to_state &&
-         action_std_depends_on_state == o.action_std_depends_on_state &&
-         encoder_state_indices == o.encoder_state_indices && learning_rate == o.learning_rate &&
-         batch_size == o.batch_size && kl_weight == o.kl_weight && weight_decay == o.weight_decay &&
-         encoder_input_noise == o.encoder_input_noise && lr_decay_epochs == o.lr_decay_epochs;
-}
+bool VaeConfig::operator==(const VaeConfig& o) const { return json(*this) == json(o); }
 
 }  // namespace vaegail::vae
