@@ -412,7 +412,14 @@ void run_plan(const PlanFlags& f) {
                     fell ? "yes" : "no", speed / t, reward / t, per_step);
       progress.set_status(line);
       table += std::string(line) + "\n";
-      if (log) log->write({double(style), double(episode), double(t), fell ? 1.0 : 0.0, speed / t, reward / t, per_step});
+      if (log)
+        log->write({{"style", style},
+                    {"episode", episode},
+                    {"steps", t},
+                    {"fell", fell ? 1.0 : 0.0},
+                    {"mean_speed", speed / t},
+                    {"mean_reward", reward / t},
+                    {"seconds_per_step", per_step}});
     }
   }
   progress.finish();

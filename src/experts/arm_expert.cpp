@@ -149,8 +149,12 @@ ArmExpertResult train_arm_expert(const ArmExpertSpec& spec, const ArmExpertOptio
     const DdpgStats stats =
         ddpg->train(*env, std::min<std::int64_t>(options.eval_every, options.total_steps - ddpg->steps_trained()));
     const ArmExpertResult now = evaluate_actor(*ddpg, *env);
-    log.write({double(ddpg->steps_trained()), stats.critic_loss, stats.actor_objective, now.best_return,
-               now.final_distance, now.path_ratio});
+    log.write({{"steps", ddpg->steps_trained()},
+               {"critic_loss", stats.critic_loss},
+               {"actor_objective", stats.actor_objective},
+               {"return", now.best_return},
+               {"final_distance", now.final_distance},
+               {"path_ratio", now.path_ratio}});
     if (now.best_return >= best.best_return) {
       best = now;
       ddpg->save_actor(run_dir + "/actor.pt");

@@ -174,8 +174,17 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
     const double n = std::max(sums[0], 1.0);
     state.done = state.steps >= options.total_steps;
     if (world.is_root()) {
-      log->write({double(state.iteration), double(state.steps), sums[0], sums[1] / n, sums[2] / n, sums[3] / n,
-                  speed, stats.approx_kl, stats.entropy, stats.value_loss, state.seconds});
+      log->write({{"iteration", state.iteration},
+                  {"steps", state.steps},
+                  {"episodes", sums[0]},
+                  {"mean_return", sums[1] / n},
+                  {"mean_length", sums[2] / n},
+                  {"fall_rate", sums[3] / n},
+                  {"speed_error", speed},
+                  {"approx_kl", stats.approx_kl},
+                  {"entropy", stats.entropy},
+                  {"value_loss", stats.value_loss},
+                  {"seconds", state.seconds}});
       if (state.done || state.iteration % options.checkpoint_every == 0) save(*agent, state, run_dir);
     }
     if (progress) progress(state.steps);

@@ -103,7 +103,7 @@ void train_bc(const DemoSet& demos, const BcOptions& options, const std::string&
     e.epoch = bc.epoch();
     e.val_nll = val_obs.defined() ? bc.nll(val_obs, val_act) : std::numeric_limits<double>::quiet_NaN();
     e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    log.write({double(e.epoch), e.train_nll, e.val_nll, e.seconds});
+    log.write({{"epoch", e.epoch}, {"train_nll", e.train_nll}, {"val_nll", e.val_nll}, {"seconds", e.seconds}});
     bc.save_checkpoint(checkpoint);
     if (on_epoch) on_epoch(e);
   }

@@ -84,10 +84,22 @@ double speed_error(const Rollout& rollout, const torch::Tensor& demo_of_step, co
   return all_sum(total) / all_sum(segments);
 }
 
-std::vector<double> row(const GailMetrics& m) {
-  return {double(m.iteration), double(m.steps), double(m.episodes), m.demo_accuracy, m.policy_accuracy,
-          m.discriminator_loss, m.gail_reward, m.env_return, m.episode_length, m.fall_rate, m.speed_error,
-          m.kl, m.entropy, m.value_loss, m.seconds};
+Metrics row(const GailMetrics& m) {
+  return {{"iteration", m.iteration},
+          {"steps", m.steps},
+          {"episodes", m.episodes},
+          {"disc_demo_accuracy", m.demo_accuracy},
+          {"disc_policy_accuracy", m.policy_accuracy},
+          {"disc_loss", m.discriminator_loss},
+          {"gail_reward", m.gail_reward},
+          {"env_return", m.env_return},
+          {"episode_length", m.episode_length},
+          {"fall_rate", m.fall_rate},
+          {"speed_error", m.speed_error},
+          {"kl", m.kl},
+          {"entropy", m.entropy},
+          {"value_loss", m.value_loss},
+          {"seconds", m.seconds}};
 }
 
 DiscriminatorOptions discriminator_options(const GailOptions& o, const Env& env, int latent_dim) {

@@ -1,5 +1,6 @@
 #include "util/csv_log.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -28,16 +29,19 @@ CsvLog::CsvLog(const std::string& path, std::vector<std::string> columns)
   if (!has_header) out_ << header << "\n" << std::flush;
 }
 
-void CsvLog::write(const std::vector<double>& values) {
-  if (values.size() != columns_.size())
-    throw std::logic_error(path_ + ": row has " + std::to_string(values.size()) +
-                           " values for " + std::to_string(columns_.size()) + " columns");
+void CsvLog::write(const Metrics& row) {
+  for (const auto& [name, value] : row)
+    if (std::find(columns_.begin(), columns_.end(), name) == columns_.end())
+      throw std::logic_error(path_ + ": '" + name + "' is not one of its columns");
+  std::string line;
   char buf[32];
-  for (size_t i = 0; i < values.size(); ++i) {
-    std::snprintf(buf, sizeof buf, "%.8g", values[i]);
-    out_ << (i ? "," : "") << buf;
+  for (const auto& column : columns_) {
+    const auto value = row.find(column);
+    if (value == row.end()) throw std::logic_error(path_ + ": the row has no value for column '" + column + "'");
+    std::snprintf(buf, sizeof buf, "%.8g", value->second);
+    line += (line.empty() ? "" : ",") + std::string(buf);
   }
-  out_ << "\n" << std::flush;
+  out_ << line << "\n" << std::flush;
 }
 
 std::vector<std::string> split_csv_line(const std::string& line) {

@@ -3,16 +3,21 @@
 #pragma once
 
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
 namespace vaegail {
 
+// One row's values by column name.
+using Metrics = std::map<std::string, double>;
+
 class CsvLog {
  public:
   CsvLog(const std::string& path, std::vector<std::string> columns);
-  // One value per column, in order; flushed at once so a killed run keeps its rows.
-  void write(const std::vector<double>& values);
+  // A value for every column, written in the columns' order; a missing or unknown name throws
+  // std::logic_error naming it. Flushed at once so a killed run keeps its rows.
+  void write(const Metrics& row);
   const std::string& path() const { return path_; }
 
  private:

@@ -10,21 +10,51 @@
 namespace vaegail {
 namespace {
 
-TEST(CsvLog, WritesHeaderOnceAndAppendsOnReopen) {
-  const std::string path = (std::filesystem::temp_directory_path() / "vaegail_metrics.csv").string();
+std::string temp_csv(const std::string& name) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
   std::remove(path.c_str());
+  return path;
+}
+
+TEST(CsvLog, WritesHeaderOnceAndAppendsOnReopen) {
+  const std::string path = temp_csv("vaegail_metrics.csv");
   {
     CsvLog log(path, {"step", "loss"});
-    log.write({1, 0.5});
+    log.write({{"step", 1}, {"loss", 0.5}});
   }
   {
     CsvLog log(path, {"step", "loss"});
-    log.write({2, 0.25});
+    log.write({{"step", 2}, {"loss", 0.25}});
   }
   EXPECT_EQ(read_file(path), "step,loss\n1,0.5\n2,0.25\n");
   EXPECT_THROW(CsvLog(path, {"step", "other"}), std::runtime_error);
+  std::remove(path.c_str());
+}
+
+TEST(CsvLog, WritesValuesInTheColumnsOrderNotTheNames) {
+  const std::string path = temp_csv("vaegail_metrics_order.csv");
+  CsvLog(path, {"zeta", "alpha", "mid"}).write({{"alpha", 1}, {"mid", 2}, {"zeta", 3}});
+  EXPECT_EQ(read_file(path), "zeta,alpha,mid\n3,1,2\n");
+  std::remove(path.c_str());
+}
+
+// The message names the column; nothing of the bad row reaches the file.
+void expect_rejected(CsvLog& log, const Metrics& row, const std::string& message) {
+  try {
+    log.write(row);
+    ADD_FAILURE() << "no throw for " << message;
+  } catch (const std::logic_error& e) {
+    EXPECT_EQ(std::string(e.what()), log.path() + ": " + message);
+  }
+}
+
+TEST(CsvLog, AMissingOrUnknownNameThrowsNamingIt) {
+  const std::string path = temp_csv("vaegail_metrics_names.csv");
   CsvLog log(path, {"step", "loss"});
-  EXPECT_THROW(log.write({1}), std::logic_error);
+  expect_rejected(log, {{"step", 1}}, "the row has no value for column 'loss'");
+  expect_rejected(log, {{"step", 1}, {"loss", 2}, {"lr", 3}}, "'lr' is not one of its columns");
+  expect_rejected(log, {{"step", 1}, {"los", 2}}, "'los' is not one of its columns");
+  EXPECT_EQ(read_file(path), "step,loss\n");
   std::remove(path.c_str());
 }
 

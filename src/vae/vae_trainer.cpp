@@ -32,9 +32,18 @@ torch::Tensor standard_normal(int64_t rows, int64_t cols, uint64_t seed,
   return at::randn({rows, cols}, gen, torch::TensorOptions(torch::kFloat)).to(device);
 }
 
-std::vector<std::string> metric_columns() {
-  return {"epoch",          "train_loss", "train_action_nll", "train_state_nll", "train_kl",
-          "val_loss",       "val_action_nll", "val_state_nll", "val_kl",         "seconds"};
+// metrics.csv's columns, in the order existing files have them.
+const std::vector<std::string> kMetricColumns = {"epoch",          "train_loss",    "train_action_nll",
+                                                 "train_state_nll", "train_kl",      "val_loss",
+                                                 "val_action_nll",  "val_state_nll", "val_kl",
+                                                 "seconds"};
+
+// The loss terms of one split as metrics.csv names them (train_loss, train_action_nll, ...).
+void add_loss_terms(Metrics& row, const std::string& split, const LossTerms& t) {
+  row[split + "_loss"] = t.total;
+  row[split + "_action_nll"] = t.action_nll;
+  row[split + "_state_nll"] = t.state_nll;
+  row[split + "_kl"] = t.kl;
 }
 
 void accumulate(LossTerms& sum, const VaeLoss& loss, double weight) {
@@ -196,9 +205,10 @@ EpochMetrics VaeTrainer::train_epoch() {
 
   // The row first, then the checkpoint: a run killed between the two redoes the epoch on
   // resume (reproducibly) and replaces the row, rather than losing it.
-  CsvLog log(metrics_path(), metric_columns());
-  log.write({static_cast<double>(e), m.train.total, m.train.action_nll, m.train.state_nll,
-             m.train.kl, m.val.total, m.val.action_nll, m.val.state_nll, m.val.kl, m.seconds});
+  Metrics row = {{"epoch", e}, {"seconds", m.seconds}};
+  add_loss_terms(row, "train", m.train);
+  add_loss_terms(row, "val", m.val);
+  CsvLog(metrics_path(), kMetricColumns).write(row);
   save_checkpoint(checkpoint_path());
   if (options_.keep_epochs) save_checkpoint(epoch_checkpoint_path(e));
   return m;
