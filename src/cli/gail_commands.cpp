@@ -70,9 +70,14 @@ void run_gail(GailFlags f) {
   if (f.options.minutes > 0) progress.set_time_budget(60 * f.options.minutes);
   trainer.train([&](const GailMetrics& m) {
     char status[160];
-    std::snprintf(status, sizeof status, "D acc %.2f/%.2f  reward %.2f  return %.1f  speed err %.2f  falls %.2f",
-                  m.demo_accuracy, m.policy_accuracy, m.gail_reward, m.env_return, m.speed_error, m.fall_rate);
-    progress.set_status(status);
+    std::snprintf(status, sizeof status, "D acc %.2f/%.2f  reward %.2f  return %.1f  falls %.2f", m.demo_accuracy,
+                  m.policy_accuracy, m.gail_reward, m.env_return, m.fall_rate);
+    std::string line = status;
+    for (const auto& [name, value] : m.task) {
+      std::snprintf(status, sizeof status, "  %s %.2f", name.c_str(), value);
+      line += status;
+    }
+    progress.set_status(line);
     progress.set(m.iteration);
   });
   progress.finish();

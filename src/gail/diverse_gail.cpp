@@ -35,12 +35,6 @@ std::uint64_t stream_seed(std::uint64_t seed, int iteration, Stream stream) {
 // Options a resumed run may change: they do not alter what an iteration computes.
 const std::vector<std::string> kResumableKeys = {"iterations", "minutes", "device", "env_threads"};
 
-int index_of(const std::vector<std::string>& names, const std::string& name) {
-  for (size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) return static_cast<int>(i);
-  return -1;
-}
-
 // Which training demonstration each step [T, N] of the rollout imitated: environment i's
 // episodes took started[i][0], [1], … in turn, the next one after each done step.
 torch::Tensor step_demonstrations(const std::vector<std::vector<int>>& started, const Rollout& rollout) {
@@ -59,47 +53,25 @@ torch::Tensor step_demonstrations(const std::vector<std::vector<int>>& started, 
   return out;
 }
 
-// Mean over the run's episode segments (all ranks') of |mean forward speed − the demo's achieved speed|.
-double speed_error(const Rollout& rollout, const torch::Tensor& demo_of_step, const GailDemos& demos,
-                   int speed_index) {
-  if (speed_index < 0) return std::numeric_limits<double>::quiet_NaN();
-  const auto speed = rollout.observations.select(2, speed_index).to(torch::kCPU, torch::kFloat64).contiguous();
-  const auto done = ((rollout.terminated + rollout.truncated) > 0).to(torch::kCPU).contiguous();
-  const auto s = speed.accessor<double, 2>();
-  const auto d = done.accessor<bool, 2>();
-  const auto m = demo_of_step.accessor<int64_t, 2>();
-  double total = 0, sum = 0, segments = 0;
-  int length = 0;
-  for (int64_t i = 0; i < speed.size(1); ++i) {
-    for (int64_t t = 0; t < speed.size(0); ++t) {
-      sum += s[t][i];
-      ++length;
-      if (!d[t][i] && t + 1 < speed.size(0)) continue;
-      total += std::abs(sum / length - demos.achieved_speeds[m[t][i]]);
-      ++segments;
-      sum = 0;
-      length = 0;
-    }
-  }
-  return all_sum(total) / all_sum(segments);
-}
-
+// A metrics.csv row: the trainer's metrics and the task's columns, NaN where the task gives none.
 Metrics row(const GailMetrics& m) {
-  return {{"iteration", m.iteration},
-          {"steps", m.steps},
-          {"episodes", m.episodes},
-          {"disc_demo_accuracy", m.demo_accuracy},
-          {"disc_policy_accuracy", m.policy_accuracy},
-          {"disc_loss", m.discriminator_loss},
-          {"gail_reward", m.gail_reward},
-          {"env_return", m.env_return},
-          {"episode_length", m.episode_length},
-          {"fall_rate", m.fall_rate},
-          {"speed_error", m.speed_error},
-          {"kl", m.kl},
-          {"entropy", m.entropy},
-          {"value_loss", m.value_loss},
-          {"seconds", m.seconds}};
+  Metrics r = {{"iteration", m.iteration},
+               {"steps", m.steps},
+               {"episodes", m.episodes},
+               {"disc_demo_accuracy", m.demo_accuracy},
+               {"disc_policy_accuracy", m.policy_accuracy},
+               {"disc_loss", m.discriminator_loss},
+               {"gail_reward", m.gail_reward},
+               {"env_return", m.env_return},
+               {"episode_length", m.episode_length},
+               {"fall_rate", m.fall_rate},
+               {"kl", m.kl},
+               {"entropy", m.entropy},
+               {"value_loss", m.value_loss},
+               {"seconds", m.seconds}};
+  for (const auto& column : gail_task_metric_columns()) r[column] = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& [column, value] : m.task) r[column] = value;
+  return r;
 }
 
 DiscriminatorOptions discriminator_options(const GailOptions& o, const Env& env, int latent_dim) {
@@ -116,10 +88,15 @@ DiscriminatorOptions discriminator_options(const GailOptions& o, const Env& env,
 
 }  // namespace
 
-const std::vector<std::string> kGailMetricColumns = {
-    "iteration", "steps",        "episodes",     "disc_demo_accuracy", "disc_policy_accuracy",
-    "disc_loss", "gail_reward",  "env_return",   "episode_length",     "fall_rate",
-    "speed_error", "kl",         "entropy",      "value_loss",         "seconds"};
+// In the order existing files have them: the task's columns after fall_rate.
+const std::vector<std::string> kGailMetricColumns = [] {
+  std::vector<std::string> columns = {"iteration", "steps", "episodes", "disc_demo_accuracy", "disc_policy_accuracy",
+                                      "disc_loss", "gail_reward", "env_return", "episode_length", "fall_rate"};
+  const auto& task = gail_task_metric_columns();
+  columns.insert(columns.end(), task.begin(), task.end());
+  columns.insert(columns.end(), {"kl", "entropy", "value_loss", "seconds"});
+  return columns;
+}();
 
 GailPhaseSeconds& GailPhaseSeconds::operator+=(const GailPhaseSeconds& o) {
   rollout += o.rollout;
@@ -165,7 +142,7 @@ GailTrainer::GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env
   demos_ = make_gail_demos(demos, vae::split_demos(demos, options_.seed).train, diverse ? &vae : nullptr);
   envs_ = std::make_unique<VecEnv>(prototype, slice_.count, options_.env_threads);
   steps_per_env_ = options_.steps_per_env > 0 ? options_.steps_per_env : prototype.episode_length();
-  speed_index_ = index_of(prototype.observation_spec().names, "rootx_vel");
+  task_metrics_ = std::make_unique<GailTaskMetrics>(prototype.observation_spec().names);
 
   agent_ = make_gail_agent(options_, prototype.obs_dim(), prototype.act_dim(), demos_.observations,
                            diverse ? vae : vae::TrajectoryVae(nullptr));
@@ -287,7 +264,7 @@ GailMetrics GailTrainer::iterate() {
   m.episode_length = sums[2] / ended;
   m.fall_rate = sums[3] / ended;
   m.gail_reward = sums[4] / static_cast<double>(batch.global_size());
-  m.speed_error = speed_error(rollout, demo_of_step, demos_, speed_index_);
+  m.task = (*task_metrics_)(rollout, demo_of_step, demos_);
   m.kl = trpo_stats.kl;
   m.entropy = trpo_stats.entropy;
   m.value_loss = trpo_stats.value_loss_after;

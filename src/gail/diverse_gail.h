@@ -56,6 +56,7 @@
 #include "gail/gail_agent.h"
 #include "gail/gail_demos.h"
 #include "gail/gail_reward.h"
+#include "gail/task_metrics.h"
 #include "rl/distributed.h"
 #include "rl/agent.h"
 #include "rl/trpo.h"
@@ -74,7 +75,7 @@ struct GailMetrics {
   double gail_reward = 0;     // mean per step
   double env_return = 0;      // mean over ended episodes (the task's own reward, context = the demo's)
   double episode_length = 0, fall_rate = 0;
-  double speed_error = 0;     // mean over episode segments of |mean forward speed − the demo's achieved speed|
+  Metrics task;               // the task's own by column name (task_metrics.h), e.g. the walker's speed_error
   double kl = 0, entropy = 0, value_loss = 0;
   double seconds = 0;         // since the run began, summed over resumed calls
 };
@@ -122,7 +123,7 @@ class GailTrainer {
   EnvSlice slice_;  // this rank's share of the run's num_envs environments
   std::unique_ptr<VecEnv> envs_;
   int steps_per_env_ = 0;
-  int speed_index_ = -1;  // the observation's forward speed (rootx_vel), -1 if it has none
+  std::unique_ptr<GailTaskMetrics> task_metrics_;
   std::shared_ptr<Agent> agent_;
   std::shared_ptr<Discriminator> discriminator_;
   std::unique_ptr<DiscriminatorTrainer> discriminator_trainer_;

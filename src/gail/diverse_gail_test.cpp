@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -111,11 +112,16 @@ TEST_F(DiverseGailTest, WritesOneMetricsRowPerIterationAndLearns) {
   EXPECT_EQ(rows[1].env_return, control[1].env_return);                  // same rollout
   EXPECT_LT(rows[1].discriminator_loss, control[1].discriminator_loss);
   EXPECT_LT(rows[1].gail_reward, control[1].gail_reward);  // -log(1 - D) on policy samples: D saw through more
+  for (const auto& row : rows) EXPECT_TRUE(std::isfinite(row.task.at("speed_error")));  // the walker's
   std::istringstream csv(read_file(t.metrics_path()));
-  std::string line;
+  std::string line, header;
   int lines = 0;
-  while (std::getline(csv, line)) ++lines;
+  for (; std::getline(csv, line); ++lines)
+    if (lines == 0) header = line;
   EXPECT_EQ(lines, 4);
+  // The committed runs' columns, so that they resume.
+  const std::string committed = read_file(std::string(VAEGAIL_SOURCE_DIR) + "/checkpoints/walker/diverse_gail/metrics.csv");
+  EXPECT_EQ(header, committed.substr(0, committed.find('\n')));
   EXPECT_EQ(t.agent().condition_dim(), vae->config().latent_dim);
   EXPECT_EQ(t.discriminator().latent_dim(), vae->config().latent_dim);
 }
