@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 namespace vaegail::vae {
@@ -77,6 +78,33 @@ TEST(VaeConfigTest, MissingKeysKeepDefaultsUnknownKeysThrow) {
   EXPECT_THROW(VaeConfig::from_json(R"({"latent_dim": "seven"})"), std::invalid_argument);
   EXPECT_THROW(VaeConfig::from_json(R"({"latent_dim": 0})"), std::invalid_argument);
   EXPECT_THROW(VaeConfig::from_json("not json"), std::invalid_argument);
+}
+
+// Each field is read from its key and counts for ==: a config differing in any one of them differs.
+TEST(VaeConfigTest, EveryFieldIsReadAndCompared) {
+  using nlohmann::json;
+  const VaeConfig c = VaeConfig::walker();
+  const json fields = json::parse(c.to_json());
+  EXPECT_EQ(fields.size(), 19u);
+  for (const auto& [key, value] : fields.items()) {
+    // Another value of the field's type that the checks accept.
+    const json other = value.is_boolean()  ? json(!value.get<bool>())
+                       : value.is_string() ? json(value.get<std::string>() + "2")
+                       : value.is_array()  ? json(std::vector<int>(c.action_dim, 1))
+                                           : json(value.get<double>() + 1);
+    const VaeConfig changed = VaeConfig::from_json(json{{key, other}}.dump(), c);
+    EXPECT_EQ(json::parse(changed.to_json()).at(key), other) << key;
+    EXPECT_NE(changed, c) << key;
+  }
+}
+
+TEST(VaeConfigTest, ABadValueIsReportedWithItsKey) {
+  try {
+    VaeConfig::from_json(R"({"latent_dim": 7, "kl_weight": "high"})");
+    FAIL() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("bad value for 'kl_weight'"), std::string::npos) << e.what();
+  }
 }
 
 // configs/walker_vae_root_encoder.json: the encoder reads the walker's root (env/walker.h's layout:
