@@ -10,9 +10,10 @@
 namespace vaegail {
 
 void check_or_write_config(const std::string& path, const nlohmann::json& config,
-                           const std::vector<std::string>& resumable_keys) {
+                           const std::vector<std::string>& resumable_keys,
+                           const std::function<nlohmann::json(const nlohmann::json&)>& normalize) {
   if (std::filesystem::exists(path)) {
-    auto stored = nlohmann::json::parse(read_file(path)), wanted = config;
+    auto stored = normalize(nlohmann::json::parse(read_file(path))), wanted = config;
     for (const auto& key : resumable_keys) {
       stored.erase(key);
       wanted.erase(key);

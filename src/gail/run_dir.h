@@ -2,6 +2,7 @@
 // log cut back to the last checkpoint, and the trained agent.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -13,9 +14,20 @@ namespace vaegail {
 
 // Writes `config` to path. If path already holds a config (a resumed run), it must equal
 // `config` except on `resumable_keys` (settings that do not change what an iteration
-// computes); otherwise std::invalid_argument names the first differing setting.
+// computes); otherwise std::invalid_argument names the first differing setting. The stored
+// config is compared as `normalize` reads it: a key an older run lacks takes the value that
+// run was read with, rather than counting as a difference.
 void check_or_write_config(const std::string& path, const nlohmann::json& config,
-                           const std::vector<std::string>& resumable_keys);
+                           const std::vector<std::string>& resumable_keys,
+                           const std::function<nlohmann::json(const nlohmann::json&)>& normalize);
+
+// The same for an options struct with JSON conversions: the stored config read as Options.
+template <class Options>
+void check_or_write_config(const std::string& path, const Options& options,
+                           const std::vector<std::string>& resumable_keys) {
+  check_or_write_config(path, nlohmann::json(options), resumable_keys,
+                        [](const nlohmann::json& stored) { return nlohmann::json(stored.get<Options>()); });
+}
 
 // Drops the rows of a metrics CSV whose first column (the iteration or epoch) exceeds
 // `last`: rows logged by a run killed before its checkpoint, which the resumed run redoes;

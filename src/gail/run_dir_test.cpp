@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "gail/gail_agent.h"
 #include "gail/test_support.h"  // one Torch thread: the tests fork
 #include "util/atomic_file.h"
 #include "util/checkpoint_file.h"
@@ -48,6 +49,26 @@ float first_weight_of_run(const std::string& dir) {
   auto agent = agent_with_weights(0);
   load_run_agent(dir, *agent, torch::kCPU);
   return agent->parameters().front().flatten()[0].item<float>();
+}
+
+// A run started before `discriminator_minibatches` existed lacks the key and was read with 1: resuming it with 1
+// agrees, with another value names the setting.
+TEST(RunDir, AnOlderConfigResumesWithTheValuesItWasReadWith) {
+  const std::string path = run_dir("older_config") + "/config.json";
+  GailOptions options;
+  auto older = nlohmann::json(options);
+  older.erase("discriminator_minibatches");
+  write_file_atomically(path, older.dump(2));
+
+  options.discriminator_minibatches = 1;
+  EXPECT_NO_THROW(check_or_write_config(path, options, {}));
+  options.discriminator_minibatches = 10;
+  try {
+    check_or_write_config(path, options, {});
+    FAIL() << "a changed setting was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("/discriminator_minibatches"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RunDir, ACheckpointOnAFailingDiskEndsInOneLineAndKeepsBothCheckpoints) {
