@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The arm results of docs/results.md (paper section 4.1; defaults: the free-pose run of
 # docs/experiments/arm-imitation.md), from the offset-free demonstrations and a
-# VAE trained by scripts/reproduce/arm.sh (its checkpoint is not in the repository).
+# VAE run trained by scripts/reproduce/arm.sh (its checkpoint, else its weights.pt).
 # Usage: scripts/arm_results.sh [OUT_DIR [DEMOS.h5 VAE_RUN_DIR]]   (default results/arm, data/arm/demos.h5,
 # checkpoints/arm/vae; about 15 minutes on 2 cores)
 set -euo pipefail
@@ -10,7 +10,7 @@ out=${1:-results/arm}
 demos=${2:-data/arm/demos.h5}
 run=${3:-checkpoints/arm/vae}
 v=build/vaegail
-vae=$run/checkpoints/latest.pt
+vae=$run  # the loaders take a run directory: its checkpoint, else its weights-only export
 mkdir -p "$out"
 # the default demonstrations are not committed: made from the committed experts
 [ $# -ge 2 ] || [ -e "$demos" ] || scripts/reproduce/arm.sh free_pose_demos
