@@ -13,11 +13,11 @@
 #include "cli/commands.h"
 #include "cli/task_options.h"
 #include "env/registry.h"
+#include "eval/embedding.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
 #include "vae/action_error.h"
 #include "vae/demo_dataset.h"
-#include "vae/embedding.h"
 #include "vae/imitation.h"
 #include "vae/latent_refinement.h"
 #include "vae/vae_bench.h"
@@ -195,10 +195,10 @@ void add_embed(CLI::App& vae) {
     if (!refined_rows.empty()) mu = refine_rows(l.model, l.demos, mu, refined_rows, f->refine);
     mu = mu.to(torch::kDouble);
     sigma = sigma.to(torch::kDouble);
-    std::vector<vae::EmbeddingRow> rows;
+    std::vector<eval::EmbeddingRow> rows;
     for (int i = 0; i < static_cast<int>(l.demos.episodes.size()); ++i) {
       const Episode& e = l.demos.episodes[i];
-      vae::EmbeddingRow r;
+      eval::EmbeddingRow r;
       r.episode = i;
       r.expert_id = e.expert_id;
       r.context = e.context.empty() ? std::nan("") : e.context[0];
@@ -208,7 +208,7 @@ void add_embed(CLI::App& vae) {
       r.sigma.assign(sigma[i].data_ptr<double>(), sigma[i].data_ptr<double>() + sigma.size(1));
       rows.push_back(std::move(r));
     }
-    write_file_atomically(f->out, vae::embedding_csv(rows));
+    write_file_atomically(f->out, eval::embedding_csv(rows));
     std::printf("%zu embeddings (z %lld) -> %s\n", rows.size(), static_cast<long long>(mu.size(1)), f->out.c_str());
   });
 }
@@ -232,12 +232,12 @@ void add_knn(CLI::App& vae) {
               "rows (the ridge chosen by leaving each training expert out), each row classified as the "
               "training target nearest its read-out (--k unused)");
   c->callback([path, k, leave_one_out, by_expert, linear] {
-    const auto rows = vae::parse_embedding_csv(read_file(*path), *path);
-    const auto result = *linear ? (*leave_one_out ? vae::linear_classify_leave_one_expert_out(rows)
-                                                  : vae::linear_classify(rows))
-                                : (*leave_one_out ? vae::knn_classify_leave_one_expert_out(rows, *k)
-                                                  : vae::knn_classify(rows, *k));
-    std::fputs(vae::format_classification(result, *by_expert).c_str(), stdout);
+    const auto rows = eval::parse_embedding_csv(read_file(*path), *path);
+    const auto result = *linear ? (*leave_one_out ? eval::linear_classify_leave_one_expert_out(rows)
+                                                  : eval::linear_classify(rows))
+                                : (*leave_one_out ? eval::knn_classify_leave_one_expert_out(rows, *k)
+                                                  : eval::knn_classify(rows, *k));
+    std::fputs(eval::format_classification(result, *by_expert).c_str(), stdout);
   });
 }
 

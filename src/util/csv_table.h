@@ -1,5 +1,5 @@
 // A CSV file with a header row, read whole for `vaegail plot`: metrics logs (util/csv_log.h), VAE
-// embeddings (vae/embedding.h) or any table a user brings. Cells stay text until a column is
+// embeddings (eval/embedding.h) or any table a user brings. Cells stay text until a column is
 // asked for as numbers, so string columns (expert ids) do not get in the way.
 //
 // The format is the plain one the project writes: comma-separated, no quoting, one row per

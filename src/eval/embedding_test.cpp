@@ -1,4 +1,4 @@
-#include "vae/embedding.h"
+#include "eval/embedding.h"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <random>
 #include <stdexcept>
 
-namespace vaegail::vae {
+namespace vaegail::eval {
 namespace {
 
 EmbeddingRow row(int episode, double context, bool held_out, std::vector<double> mu) {
@@ -213,4 +213,4 @@ TEST(EmbeddingTest, LinearReadoutLeftOutIsRefitWithoutTheExpert) {
 }
 
 }  // namespace
-}  // namespace vaegail::vae
+}  // namespace vaegail::eval

@@ -1,4 +1,4 @@
-#include "vae/embedding.h"
+#include "eval/embedding.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "util/csv_log.h"
 
-namespace vaegail::vae {
+namespace vaegail::eval {
 
 namespace {
 
@@ -403,4 +403,4 @@ std::string format_classification(const TargetClassification& r, bool by_expert)
   return out;
 }
 
-}  // namespace vaegail::vae
+}  // namespace vaegail::eval

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace vaegail::vae {
+namespace vaegail::eval {
 
 struct EmbeddingRow {
   int episode = 0;
@@ -79,4 +79,4 @@ TargetClassification linear_classify_leave_one_expert_out(const std::vector<Embe
 // for), for the read-out its rows' mean read-out.
 std::string format_classification(const TargetClassification& result, bool by_expert = false);
 
-}  // namespace vaegail::vae
+}  // namespace vaegail::eval
