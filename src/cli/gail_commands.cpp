@@ -8,12 +8,12 @@
 #include <memory>
 #include <stdexcept>
 
+#include "bench/gail_bench.h"
 #include "cli/commands.h"
 #include "cli/task_options.h"
 #include "env/registry.h"
 #include "gail/behavior_cloning.h"
 #include "gail/diverse_gail.h"
-#include "gail/gail_bench.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
 #include "util/world.h"

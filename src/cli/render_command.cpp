@@ -8,13 +8,13 @@
 #include <memory>
 #include <stdexcept>
 
+#include "bench/render_bench.h"
 #include "cli/commands.h"
 #include "cli/eval_policies.h"
 #include "cli/imitation_video.h"
 #include "cli/task_options.h"
 #include "experts/expert_trainer.h"
 #include "gail/diverse_gail.h"
-#include "render/render_bench.h"
 #include "vae/vae_trainer.h"
 
 namespace vaegail::cli {
@@ -89,7 +89,7 @@ void add_render(CLI::App& app) {
 
 struct RenderBenchFlags {
   TaskOptions task;
-  render::RenderBenchOptions bench;
+  RenderBenchOptions bench;
 };
 
 void add_bench_render(CLI::App& bench) {
@@ -102,7 +102,7 @@ void add_bench_render(CLI::App& bench) {
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   c->callback([f] {
     f->bench.env = f->task.request();
-    std::fputs(render::format_render_bench(f->bench, render::run_render_bench(f->bench)).c_str(), stdout);
+    std::fputs(format_render_bench(f->bench, run_render_bench(f->bench)).c_str(), stdout);
   });
 }
 

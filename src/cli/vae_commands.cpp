@@ -10,6 +10,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "bench/vae_bench.h"
 #include "cli/commands.h"
 #include "cli/task_options.h"
 #include "env/registry.h"
@@ -20,7 +21,6 @@
 #include "vae/demo_dataset.h"
 #include "vae/imitation.h"
 #include "vae/latent_refinement.h"
-#include "vae/vae_bench.h"
 #include "vae/vae_trainer.h"
 
 namespace vaegail::cli {
@@ -401,7 +401,7 @@ void add_interpolate(CLI::App& vae) {
 struct BenchFlags {
   std::string preset = "walker";
   int state_dim = 0, action_dim = 0, steps = 0;  // 0: the preset body's
-  vae::VaeBenchOptions bench;
+  VaeBenchOptions bench;
 };
 
 // Each preset's body and data set: its observation and action sizes, episode length and the
@@ -434,8 +434,8 @@ void add_bench_vae(CLI::App& bench) {
     f->bench.epoch_episodes = shape.epoch_episodes;
     f->bench.config = vae::VaeConfig::preset(f->preset, f->state_dim ? f->state_dim : shape.state_dim,
                                              f->action_dim ? f->action_dim : shape.action_dim);
-    const auto r = vae::run_vae_bench(f->bench);
-    std::fputs(vae::format_vae_bench(f->bench, r).c_str(), stdout);
+    const auto r = run_vae_bench(f->bench);
+    std::fputs(format_vae_bench(f->bench, r).c_str(), stdout);
   });
 }
 

@@ -1,4 +1,4 @@
-#include "render/render_bench.h"
+#include "bench/render_bench.h"
 
 #include <chrono>
 #include <cstdio>
@@ -10,7 +10,7 @@
 #include "render/frame_renderer.h"
 #include "render/mp4_writer.h"
 
-namespace vaegail::render {
+namespace vaegail {
 
 namespace {
 
@@ -25,20 +25,20 @@ RenderBenchResult run_render_bench(const RenderBenchOptions& options) {
   request.terminate_on_fall = false;
   const auto env = make_env(request);
   auto* mujoco = dynamic_cast<MujocoEnv*>(env.get());
-  if (!mujoco) throw RenderError("environment '" + env->id() + "' is not a MuJoCo one: nothing to render");
+  if (!mujoco) throw render::RenderError("environment '" + env->id() + "' is not a MuJoCo one: nothing to render");
   RecordRequest episode;
   episode.seeds = {0};
   episode.num_envs = 1;
   const Episode random = record_episodes(*env, episode, random_policy(*env, 0)).front();
 
-  FrameRenderer renderer(mujoco->model(), {1, 1, options.width, options.height});
+  render::FrameRenderer renderer(mujoco->model(), {1, 1, options.width, options.height});
   const std::string path = (std::filesystem::temp_directory_path() /
                             ("vaegail_bench_render_" + std::to_string(getpid()) + ".mp4")).string();
   RenderBenchResult result;
   result.gl_renderer = renderer.gl_renderer();
   result.frames = std::min(options.frames, random.length() + 1);
   {
-    Mp4Writer video(path, {options.width, options.height, 30});
+    render::Mp4Writer video(path, {options.width, options.height, 30});
     env->reset(random.seed);
     for (int f = 0; f < result.frames; ++f) {
       if (f > 0) env->step(random.actions.data() + static_cast<size_t>(f - 1) * env->act_dim());
@@ -70,4 +70,4 @@ std::string format_render_bench(const RenderBenchOptions& options, const RenderB
   return text;
 }
 
-}  // namespace vaegail::render
+}  // namespace vaegail

@@ -9,7 +9,7 @@
 
 #include "env/registry.h"
 
-namespace vaegail::render {
+namespace vaegail {
 
 struct RenderBenchOptions {
   EnvRequest env;
@@ -29,4 +29,4 @@ struct RenderBenchResult {
 RenderBenchResult run_render_bench(const RenderBenchOptions& options);
 std::string format_render_bench(const RenderBenchOptions& options, const RenderBenchResult& result);
 
-}  // namespace vaegail::render
+}  // namespace vaegail

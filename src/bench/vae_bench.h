@@ -1,15 +1,15 @@
 // `vaegail bench vae`: training throughput of the trajectory VAE against this machine's
-// matrix-multiply ceiling, measured in one run (see README.md for the recorded figures).
+// matrix-multiply ceiling, measured in one run (recorded figures: docs/benchmarks.md).
 #pragma once
 
 #include <string>
 
 #include "vae/vae_config.h"
 
-namespace vaegail::vae {
+namespace vaegail {
 
 struct VaeBenchOptions {
-  VaeConfig config = VaeConfig::walker();
+  vae::VaeConfig config = vae::VaeConfig::walker();
   int batch = 32;          // trajectories per training step
   int steps = 400;         // steps per trajectory (the walker's 10 s episodes)
   double seconds = 3.0;    // measuring time per part (at least one timed run each)
@@ -41,6 +41,6 @@ std::string format_vae_bench(const VaeBenchOptions& options, const VaeBenchResul
 
 // Matmul FLOPs of one forward + backward of the state decoder on `positions` (x_t, x_{t+1})
 // pairs (backward counted as twice the forward).
-double state_decoder_flops(const VaeConfig& config, double positions);
+double state_decoder_flops(const vae::VaeConfig& config, double positions);
 
-}  // namespace vaegail::vae
+}  // namespace vaegail

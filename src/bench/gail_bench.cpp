@@ -1,4 +1,4 @@
-#include "gail/gail_bench.h"
+#include "bench/gail_bench.h"
 
 #include <cstdio>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "vae/vae_bench.h"
+#include "bench/vae_bench.h"
 
 #include <sys/resource.h>
 
@@ -9,7 +9,10 @@
 #include "util/malloc_tuning.h"
 #include "vae/trajectory_vae.h"
 
-namespace vaegail::vae {
+namespace vaegail {
+
+using vae::TrajectoryVae;
+using vae::VaeConfig;
 
 namespace {
 
@@ -99,7 +102,7 @@ VaeBenchResult run_vae_bench(const VaeBenchOptions& o) {
   r.state_decoder_gflops = state_decoder_flops(c, static_cast<double>(B * T)) / r.state_decoder_seconds / 1e9;
   r.reference_state_decoder_seconds = best_seconds(o.seconds, [&] {
     vae->zero_grad();
-    mixture_log_prob(next, vae->state_decoder()->forward_reference(prev, next, z_flat)).sum().neg().backward();
+    vae::mixture_log_prob(next, vae->state_decoder()->forward_reference(prev, next, z_flat)).sum().neg().backward();
   });
   r.peak_rss_mb = peak_rss_mb();
   return r;
@@ -132,4 +135,4 @@ std::string format_vae_bench(const VaeBenchOptions& o, const VaeBenchResult& r) 
   return buf;
 }
 
-}  // namespace vaegail::vae
+}  // namespace vaegail
