@@ -11,6 +11,7 @@ packages=(
   libhdf5-dev             # demonstration files
   libopenblas0-openmp     # BLAS for LibTorch: ~8x faster LSTMs than the reference BLAS
   libcli11-dev nlohmann-json3-dev
+  libfmt-dev              # fmt 9: type-safe text formatting without fixed buffers (docs/architecture.md)
   libgtest-dev libbenchmark-dev
   libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri  # render: OpenGL without display or GPU (EGL surfaceless, llvmpipe)
   libavcodec-dev libavformat-dev libswscale-dev       # render: H.264 (libx264) in MP4
