@@ -1,7 +1,7 @@
 #include "util/csv_log.h"
 
 #include <algorithm>
-#include <cstdio>
+#include <fmt/format.h>
 #include <sstream>
 #include <stdexcept>
 
@@ -34,12 +34,10 @@ void CsvLog::write(const Metrics& row) {
     if (std::find(columns_.begin(), columns_.end(), name) == columns_.end())
       throw std::logic_error(path_ + ": '" + name + "' is not one of its columns");
   std::string line;
-  char buf[32];
   for (const auto& column : columns_) {
     const auto value = row.find(column);
     if (value == row.end()) throw std::logic_error(path_ + ": the row has no value for column '" + column + "'");
-    std::snprintf(buf, sizeof buf, "%.8g", value->second);
-    line += (line.empty() ? "" : ",") + std::string(buf);
+    line += (line.empty() ? "" : ",") + fmt::format("{:.8g}", value->second);
   }
   out_ << line << "\n" << std::flush;
 }

@@ -2,17 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <fmt/format.h>
 #include <stdexcept>
 
 namespace vaegail {
 namespace {
 
-std::string general_label(double value) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", value);
-  return buf;
-}
+std::string general_label(double value) { return fmt::format("{:g}", value); }
 
 }  // namespace
 
@@ -63,10 +59,8 @@ std::string histogram_table(const std::vector<double>& bin_edges,
   for (const auto& s : series) counts.push_back(bin_counts(s.values, bin_edges));
   std::vector<std::string> bins;
   for (size_t b = 0; b + 1 < bin_edges.size(); ++b) {
-    char buf[64];
     const bool last = b + 2 == bin_edges.size();
-    std::snprintf(buf, sizeof buf, "[%.4g, %.4g%c", bin_edges[b], bin_edges[b + 1], last ? ']' : ')');
-    bins.push_back(buf);
+    bins.push_back(fmt::format("[{:.4g}, {:.4g}{}", bin_edges[b], bin_edges[b + 1], last ? ']' : ')'));
   }
   size_t bin_width = 3;
   for (const auto& b : bins) bin_width = std::max(bin_width, b.size());
@@ -92,7 +86,6 @@ std::string histogram_table(const std::vector<double>& bin_edges,
 
 std::string histogram_csv(const std::vector<HistogramSeries>& series) {
   std::string out = "series,value\n";
-  char value[32];
   for (const auto& s : series) {
     std::string name = s.name;
     if (name.find_first_of(",\"\n") != std::string::npos) {
@@ -100,10 +93,7 @@ std::string histogram_csv(const std::vector<HistogramSeries>& series) {
       for (char c : s.name) name += c == '"' ? std::string("\"\"") : std::string(1, c);
       name = '"' + name + '"';
     }
-    for (double v : s.values) {
-      std::snprintf(value, sizeof value, "%.9g", v);
-      out += name + "," + value + "\n";
-    }
+    for (double v : s.values) out += fmt::format("{},{:.9g}\n", name, v);
   }
   return out;
 }
