@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <fmt/format.h>
+#include <iterator>
 #include <limits>
 
 namespace vaegail {
@@ -55,41 +56,34 @@ DemoSummary summarize(const DemoSet& set) {
 namespace {
 std::string context_text(const std::vector<double>& c) {
   std::string s;
-  char buf[32];
-  for (size_t i = 0; i < c.size(); ++i) {
-    std::snprintf(buf, sizeof buf, "%s%g", i ? ", " : "", c[i]);
-    s += buf;
-  }
+  for (size_t i = 0; i < c.size(); ++i) s += fmt::format("{}{:g}", i ? ", " : "", c[i]);
   return s.empty() ? "(none)" : s;
 }
 }  // namespace
 
 std::string format_summary(const DemoSet& set, const DemoSummary& s) {
   std::string out;
-  char line[256];
-  auto add = [&](const char* fmt, auto... args) {
-    std::snprintf(line, sizeof line, fmt, args...);
-    out += line;
-  };
+  const auto add = std::back_inserter(out);
   const auto& h = set.header;
-  add("file          %s\n", set.path.c_str());
-  add("env           %s (obs %d, act %d, control step %g s)\n", h.env_id.c_str(), h.obs_dim(),
-      h.act_dim(), h.control_timestep);
-  add("episodes      %d (%ld steps; length mean %.1f, min %g, max %g)\n", s.episodes, s.steps,
-      s.lengths.mean, s.lengths.min, s.lengths.max);
-  add("terminated    %d episodes ended before the time limit\n", s.terminated_episodes);
-  add("experts       %zu\n", s.episodes_per_expert.size());
+  fmt::format_to(add, "file          {}\n", set.path);
+  fmt::format_to(add, "env           {} (obs {}, act {}, control step {:g} s)\n", h.env_id, h.obs_dim(), h.act_dim(),
+                 h.control_timestep);
+  fmt::format_to(add, "episodes      {} ({} steps; length mean {:.1f}, min {:g}, max {:g})\n", s.episodes, s.steps,
+                 s.lengths.mean, s.lengths.min, s.lengths.max);
+  fmt::format_to(add, "terminated    {} episodes ended before the time limit\n", s.terminated_episodes);
+  fmt::format_to(add, "experts       {}\n", s.episodes_per_expert.size());
   std::string ctx_names;
   for (const auto& n : h.context_names) ctx_names += (ctx_names.empty() ? "" : ", ") + n;
-  add("\nepisodes per context (%s)\n", ctx_names.empty() ? "none" : ctx_names.c_str());
+  fmt::format_to(add, "\nepisodes per context ({})\n", ctx_names.empty() ? "none" : ctx_names);
   for (const auto& [context, count] : s.episodes_per_context)
-    add("  %-20s %d\n", context_text(context).c_str(), count);
-  add("\n%-16s %10s %10s %10s %10s   %s\n", "feature", "mean", "std", "min", "max", "episode means: mean, std, min, max");
+    fmt::format_to(add, "  {:<20} {}\n", context_text(context), count);
+  fmt::format_to(add, "\n{:<16} {:>10} {:>10} {:>10} {:>10}   {}\n", "feature", "mean", "std", "min", "max",
+                 "episode means: mean, std, min, max");
   for (size_t f = 0; f < s.feature_names.size(); ++f) {
     const Moments& a = s.per_step[f];
     const Moments& b = s.episode_mean[f];
-    add("%-16s %10.4g %10.4g %10.4g %10.4g   %.4g, %.4g, %.4g, %.4g\n", s.feature_names[f].c_str(), a.mean,
-        a.std, a.min, a.max, b.mean, b.std, b.min, b.max);
+    fmt::format_to(add, "{:<16} {:10.4g} {:10.4g} {:10.4g} {:10.4g}   {:.4g}, {:.4g}, {:.4g}, {:.4g}\n",
+                   s.feature_names[f], a.mean, a.std, a.min, a.max, b.mean, b.std, b.min, b.max);
   }
   return out;
 }

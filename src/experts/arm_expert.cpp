@@ -1,8 +1,8 @@
 #include "experts/arm_expert.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 
 #include "env/arm.h"
 #include "util/atomic_file.h"
@@ -18,9 +18,7 @@ std::vector<ArmExpertSpec> arm_expert_specs(int count, std::uint64_t seed) {
   Rng rng(seed);
   std::vector<ArmExpertSpec> specs;
   for (int i = 0; i < count; ++i) {
-    char id[32];
-    std::snprintf(id, sizeof id, "reach_%02d", i);
-    specs.push_back({id, ArmEnv::random_target(rng), derive_seed(seed, i)});
+    specs.push_back({fmt::format("reach_{:02}", i), ArmEnv::random_target(rng), derive_seed(seed, i)});
   }
   return specs;
 }

@@ -1,7 +1,7 @@
 #include "experts/expert_eval.h"
 
 #include <cmath>
-#include <cstdio>
+#include <fmt/format.h>
 #include <string>
 
 #include "env/humanoid.h"
@@ -30,9 +30,7 @@ SpeedGoal speed_goal(const Env& env, double target) {
     const int style = static_cast<int>(target);
     return {humanoid->style_names().at(style), humanoid->style_target(style)[kForwardSpeed], "mean_forward_speed"};
   }
-  char label[32];
-  std::snprintf(label, sizeof label, "%.2f", target);
-  return {label, target, "mean_com_speed"};
+  return {fmt::format("{:.2f}", target), target, "mean_com_speed"};
 }
 }  // namespace
 
@@ -75,12 +73,10 @@ ExpertEvaluation evaluate_expert(const LoadedExpert& expert, const ExpertEvalOpt
 
 std::string format_evaluations(const std::vector<ExpertEvaluation>& evaluations) {
   std::string out;
-  char line[256];
   const bool signatures = !evaluations.empty() && !evaluations.front().targets.empty() &&
                           !evaluations.front().targets.front().signature.empty();
-  std::snprintf(line, sizeof line, "%-28s %7s %9s %10s %11s %9s  %s", "expert", "target", "episodes",
-                "mean speed", "|mean-tgt|", "fall rate", "passes");
-  out += line;
+  out += fmt::format("{:<28} {:>7} {:>9} {:>10} {:>11} {:>9}  {}", "expert", "target", "episodes", "mean speed",
+                     "|mean-tgt|", "fall rate", "passes");
   if (signatures)
     for (size_t k = 1; k < kGaitStatistics.size(); ++k) out += std::string(" ") + kGaitStatistics[k];
   out += "\n";
@@ -90,21 +86,16 @@ std::string format_evaluations(const std::vector<ExpertEvaluation>& evaluations)
     passing += ok;
     for (const auto& t : e.targets) {
       // The verdict is padded only where signature columns follow it.
-      std::snprintf(line, sizeof line, "%-28s %7s %9d %10.3f %11.3f %9.2f  %-*s", e.id.c_str(), t.label.c_str(),
-                    t.episodes, t.mean_speed, t.speed_error, t.fall_rate, signatures ? 6 : 0, ok ? "yes" : "no");
-      out += line;
+      out += fmt::format("{:<28} {:>7} {:9} {:10.3f} {:11.3f} {:9.2f}  {:<{}}", e.id, t.label, t.episodes,
+                         t.mean_speed, t.speed_error, t.fall_rate, ok ? "yes" : "no", signatures ? 6 : 0);
       // The signature's first statistic is the mean speed, already printed.
-      for (size_t k = 1; k < t.signature.size(); ++k) {
-        std::snprintf(line, sizeof line, " %*.3f", static_cast<int>(std::string(kGaitStatistics[k]).size()),
-                      t.signature[k]);
-        out += line;
-      }
+      for (size_t k = 1; k < t.signature.size(); ++k)
+        out += fmt::format(" {:{}.3f}", t.signature[k], std::string(kGaitStatistics[k]).size());
       out += "\n";
     }
   }
-  std::snprintf(line, sizeof line, "\n%d of %zu experts pass (every target within 0.3 m/s, falls < 10%%)\n",
-                passing, evaluations.size());
-  return out + line;
+  return out + fmt::format("\n{} of {} experts pass (every target within 0.3 m/s, falls < 10%)\n", passing,
+                           evaluations.size());
 }
 
 }  // namespace vaegail

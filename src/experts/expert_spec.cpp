@@ -1,7 +1,7 @@
 #include "experts/expert_spec.h"
 
 #include <algorithm>
-#include <cstdio>
+#include <fmt/format.h>
 #include <stdexcept>
 
 namespace vaegail {
@@ -15,11 +15,7 @@ ExpertGrid small_walker_grid() { return {{{-1}, {0}, {1}, {3}, {-1, 0, 1}, {-1, 
 namespace {
 std::string group_name(const std::vector<double>& targets) {
   std::string name = targets.size() > 1 ? "ctx" : "speed";
-  char buf[16];
-  for (size_t i = 0; i < targets.size(); ++i) {
-    std::snprintf(buf, sizeof buf, "%s%g", i ? "_" : "", targets[i]);
-    name += buf;
-  }
+  for (size_t i = 0; i < targets.size(); ++i) name += fmt::format("{}{:g}", i ? "_" : "", targets[i]);
   return name;
 }
 
@@ -57,9 +53,7 @@ std::vector<ExpertSpec> expand(const ExpertGrid& grid) {
         s.seed = static_cast<std::uint64_t>(seed);
         s.task = grid.task;
         s.condition = grid.condition;
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "_logstd%g_seed%d", log_std, seed);
-        s.id = prefix + group_name(group) + buf;
+        s.id = prefix + group_name(group) + fmt::format("_logstd{:g}_seed{}", log_std, seed);
         specs.push_back(s);
       }
   return specs;

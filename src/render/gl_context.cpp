@@ -3,8 +3,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/gl.h>
-
-#include <cstdio>
+#include <fmt/format.h>
 
 #if defined(__SANITIZE_ADDRESS__)
 #include <dlfcn.h>
@@ -37,10 +36,9 @@ void keep_loaded_libraries() {
 #endif
 
 [[noreturn]] void fail(const char* call) {
-  char code[16];
-  std::snprintf(code, sizeof code, "0x%04x", static_cast<unsigned>(eglGetError()));
-  throw RenderError(std::string("offscreen OpenGL: ") + call + " failed (EGL error " + code +
-                    "; Mesa's EGL and llvmpipe come with libegl-mesa0 and libgl1-mesa-dri)");
+  throw RenderError(fmt::format("offscreen OpenGL: {} failed (EGL error 0x{:04x}; Mesa's EGL and llvmpipe come "
+                                "with libegl-mesa0 and libgl1-mesa-dri)",
+                                call, static_cast<unsigned>(eglGetError())));
 }
 
 }  // namespace

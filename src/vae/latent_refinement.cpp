@@ -1,6 +1,6 @@
 #include "vae/latent_refinement.h"
 
-#include <cstdio>
+#include <fmt/format.h>
 #include <stdexcept>
 #include <string>
 
@@ -64,12 +64,10 @@ RefinedLatents refine_with_report(TrajectoryVae& model, const TrajectoryDataset&
   r.z = refine_latents(model, data, start, options, &progress);
   progress.finish();
   r.objective_after = latent_objective(model, data, r.z).mean().item<double>();
-  char text[300];
-  std::snprintf(text, sizeof text,
-                "the encoder's mean refined by %d Adam steps (lr %g) towards the mode of p(z | demonstration); "
-                "-log p(demonstration, z) per demonstration %.1f at the encoder's mean, %.1f refined",
-                options.steps, options.learning_rate, r.objective_before, r.objective_after);
-  r.description = text;
+  r.description = fmt::format(
+      "the encoder's mean refined by {} Adam steps (lr {:g}) towards the mode of p(z | demonstration); "
+      "-log p(demonstration, z) per demonstration {:.1f} at the encoder's mean, {:.1f} refined",
+      options.steps, options.learning_rate, r.objective_before, r.objective_after);
   return r;
 }
 

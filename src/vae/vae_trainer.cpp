@@ -4,8 +4,8 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <sstream>
 #include <stdexcept>
 
@@ -187,9 +187,7 @@ EpochMetrics VaeTrainer::train_epoch() {
     optimizer_->step();
     accumulate(sum, loss, static_cast<double>(n));
     if (progress) {
-      char status[64];
-      std::snprintf(status, sizeof status, "loss %.4g", loss.total.item<double>());
-      progress->set_status(status);
+      progress->set_status(fmt::format("loss {:.4g}", loss.total.item<double>()));
       progress->advance();
     }
   }
