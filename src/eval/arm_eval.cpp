@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <sstream>
 #include <stdexcept>
 
@@ -199,9 +200,8 @@ std::string interpolation_paths_csv(const InterpolationPair& pair, const DemoSet
   write_top_view(out, 1, "1", "demonstration b", false, grip_path(demos.episodes.at(pair.episode_b),
                                                                   demos.header.feature_names));
   for (size_t k = 0; k < pair.alphas.size(); ++k) {
-    char alpha[32];
-    std::snprintf(alpha, sizeof alpha, "%.2f", pair.alphas[k]);
-    write_top_view(out, k + 2, alpha, std::string("alpha ") + alpha, true, pair.paths[k]);
+    const std::string alpha = fmt::format("{:.2f}", pair.alphas[k]);
+    write_top_view(out, k + 2, alpha, "alpha " + alpha, true, pair.paths[k]);
   }
   return out.str();
 }

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <fmt/format.h>
 #include <sstream>
 #include <stdexcept>
 
@@ -12,11 +12,7 @@ namespace vaegail::eval {
 
 namespace {
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
+std::string number(double v) { return fmt::format("{:.9g}", v); }
 
 std::string header(size_t latent) {
   std::string h = "episode,expert_id,context,achieved_speed,held_out";
@@ -361,11 +357,7 @@ std::string expert_line(const std::string& id, const ExpertVote& e, bool linear)
   for (double c : e.contexts) targets += (targets.empty() ? "" : "/") + number(c);
   std::string line = "  expert " + id + (e.contexts.size() > 1 ? " (targets " : " (target ") + targets +
                      "): " + std::to_string(e.correct) + " / " + std::to_string(e.total);
-  if (linear) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "; mean read-out %+.2f\n", e.readout_sum / e.total);
-    return line + buf;
-  }
+  if (linear) return line + fmt::format("; mean read-out {:+.2f}\n", e.readout_sum / e.total);
   std::vector<std::pair<int, std::string>> by_count;
   for (const auto& [neighbour, n] : e.neighbours) by_count.push_back({-n, neighbour});
   std::sort(by_count.begin(), by_count.end());
@@ -378,26 +370,18 @@ std::string expert_line(const std::string& id, const ExpertVote& e, bool linear)
 }  // namespace
 
 std::string format_classification(const TargetClassification& r, bool by_expert) {
-  char buf[256];  // the read-out's header line runs to about 140 characters
   std::string rule = "k-NN (k = " + std::to_string(r.k) + ")";
-  if (r.linear && r.leave_one_expert_out) {
+  if (r.linear && r.leave_one_expert_out)
     rule = "linear read-out (its ridge chosen anew without each expert)";
-  } else if (r.linear) {
-    std::snprintf(buf, sizeof buf, "linear read-out (ridge %g, chosen by leaving each training expert out)", r.ridge);
-    rule = buf;
-  }
-  std::snprintf(buf, sizeof buf, "%s on %s: %d / %d = %.1f%%\n", rule.c_str(),
-                r.leave_one_expert_out ? "training embeddings, each expert left out in turn" : "held-out embeddings",
-                r.correct, r.total, 100.0 * r.accuracy());
-  std::string out = buf;
-  for (const auto& [context, ct] : r.per_target) {
-    std::snprintf(buf, sizeof buf, "  target %+g: %d / %d = %.1f%%\n", context, ct.first, ct.second,
-                  100.0 * ct.first / ct.second);
-    out += buf;
-  }
-  std::snprintf(buf, sizeof buf, "  experts with most of their rows correct: %d / %d\n", r.experts_majority_correct,
-                r.experts);
-  out += buf;
+  else if (r.linear)
+    rule = fmt::format("linear read-out (ridge {:g}, chosen by leaving each training expert out)", r.ridge);
+  std::string out = fmt::format(
+      "{} on {}: {} / {} = {:.1f}%\n", rule,
+      r.leave_one_expert_out ? "training embeddings, each expert left out in turn" : "held-out embeddings", r.correct,
+      r.total, 100.0 * r.accuracy());
+  for (const auto& [context, ct] : r.per_target)
+    out += fmt::format("  target {:+g}: {} / {} = {:.1f}%\n", context, ct.first, ct.second, 100.0 * ct.first / ct.second);
+  out += fmt::format("  experts with most of their rows correct: {} / {}\n", r.experts_majority_correct, r.experts);
   if (by_expert)
     for (const auto& [id, e] : r.per_expert) out += expert_line(id, e, r.linear);
   return out;

@@ -1,8 +1,9 @@
 #include "eval/transitions.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstdlib>
+#include <fmt/format.h>
+#include <iterator>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -42,11 +43,7 @@ int feature_index(const std::vector<std::string>& names, const std::string& name
   return static_cast<int>(it - names.begin());
 }
 
-std::string number_label(double v) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%g", v);
-  return s;
-}
+std::string number_label(double v) { return fmt::format("{:g}", v); }
 
 }  // namespace
 
@@ -55,9 +52,7 @@ BehaviourJudge walker_speed_judge(const std::vector<std::string>& feature_names,
   const int n_features = static_cast<int>(feature_names.size());
   BehaviourJudge judge;
   judge.noun = "speed";
-  char rule[96];
-  std::snprintf(rule, sizeof rule, "the mean forward speed is within %.2f m/s of B's demonstration's", tolerance);
-  judge.rule = rule;
+  judge.rule = fmt::format("the mean forward speed is within {:.2f} m/s of B's demonstration's", tolerance);
   judge.of_demonstration = [](const DemoSet& demos, int64_t episode) {
     const Episode& e = demos.episodes.at(episode);
     return Behaviour{e.context.empty() ? "" : number_label(e.context[0]), vae::achieved_speed(demos, episode)};
@@ -170,14 +165,10 @@ std::vector<TransitionRow> run_transitions(const Env& prototype, const DemoSet& 
 std::string transitions_csv(const std::vector<TransitionRow>& rows) {
   std::string csv = "policy,from_episode,to_episode,from_expert,to_expert,from_behaviour,to_behaviour,from_speed,"
                     "to_speed,fell,fall_step,speed_after,behaviour_after,matched\n";
-  char line[512];
-  for (const auto& r : rows) {
-    std::snprintf(line, sizeof line, "%s,%lld,%lld,%s,%s,%s,%s,%.6f,%.6f,%d,%d,%.6f,%s,%d\n", r.policy.c_str(),
-                  static_cast<long long>(r.pair.from), static_cast<long long>(r.pair.to), r.from_expert.c_str(),
-                  r.to_expert.c_str(), r.from.label.c_str(), r.to.label.c_str(), r.from.speed, r.to.speed,
-                  r.fell ? 1 : 0, r.fall_step, r.after.speed, r.after.label.c_str(), r.matched ? 1 : 0);
-    csv += line;
-  }
+  for (const auto& r : rows)
+    fmt::format_to(std::back_inserter(csv), "{},{},{},{},{},{},{},{:.6f},{:.6f},{},{},{:.6f},{},{}\n", r.policy, r.pair.from,
+                   r.pair.to, r.from_expert, r.to_expert, r.from.label, r.to.label, r.from.speed, r.to.speed,
+                   r.fell ? 1 : 0, r.fall_step, r.after.speed, r.after.label, r.matched ? 1 : 0);
   return csv;
 }
 
@@ -251,16 +242,11 @@ std::string transition_table(const std::vector<TransitionSummary>& summaries, co
   std::string table = std::string("| policy | ") + (by_labels ? "from " + noun + " | to " + noun : "transition") +
                       " | pairs | up at the blend | stayed up | matched B | matched B where B alone is |\n|---|" +
                       (by_labels ? "---:|---:|" : "---|") + "---:|---:|---:|---:|---:|\n";
-  char line[320], alone[64];
   for (const auto& s : summaries) {
     const std::string what = by_labels ? s.from_label + " | " + s.to_label : kinds.at(s.pairs);
-    if (s.pairs == "none")
-      std::snprintf(alone, sizeof alone, "-");
-    else
-      std::snprintf(alone, sizeof alone, "%d of %d", s.matched_b_alone, s.b_alone);
-    std::snprintf(line, sizeof line, "| %s | %s | %d | %.1f%% | %.1f%% | %.1f%% | %s |\n", s.policy.c_str(),
-                  what.c_str(), s.n, 100.0 * s.up_at_blend, 100.0 * s.stayed_up, 100.0 * s.matched, alone);
-    table += line;
+    const std::string alone = s.pairs == "none" ? "-" : fmt::format("{} of {}", s.matched_b_alone, s.b_alone);
+    table += fmt::format("| {} | {} | {} | {:.1f}% | {:.1f}% | {:.1f}% | {} |\n", s.policy, what, s.n,
+                         100.0 * s.up_at_blend, 100.0 * s.stayed_up, 100.0 * s.matched, alone);
   }
   return table;
 }

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <fmt/format.h>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -43,8 +43,7 @@ double fill_row(const double* distances, int n, int i, double nearest, double be
 }
 
 void check_perplexity(double perplexity, int n) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", perplexity);
+  const std::string text = fmt::format("{:g}", perplexity);
   if (!(perplexity >= 1))
     throw std::invalid_argument(std::string("t-SNE: perplexity must be >= 1, got ") + text);
   if (!(n - 1 > perplexity))

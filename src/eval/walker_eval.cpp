@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <fmt/format.h>
+#include <iterator>
 #include <map>
 
 #include "util/progress.h"
@@ -77,13 +78,10 @@ std::vector<ImitationSummary> summarize(const std::vector<ImitationRow>& rows, b
 
 std::string rows_csv(const std::vector<ImitationRow>& rows) {
   std::string csv = "policy,episode,expert_id,target,held_out,demo_speed,achieved_speed,abs_diff,fell\n";
-  char line[320];
-  for (const auto& r : rows) {
-    std::snprintf(line, sizeof line, "%s,%lld,%s,%.9g,%d,%.6f,%.6f,%.6f,%d\n", r.policy.c_str(),
-                  static_cast<long long>(r.episode), r.expert_id.c_str(), r.target, r.held_out ? 1 : 0, r.demo_speed,
-                  r.achieved_speed, r.abs_difference(), r.fell ? 1 : 0);
-    csv += line;
-  }
+  for (const auto& r : rows)
+    fmt::format_to(std::back_inserter(csv), "{},{},{},{:.9g},{},{:.6f},{:.6f},{:.6f},{}\n", r.policy, r.episode,
+                   r.expert_id, r.target, r.held_out ? 1 : 0, r.demo_speed, r.achieved_speed, r.abs_difference(),
+                   r.fell ? 1 : 0);
   return csv;
 }
 
@@ -93,14 +91,11 @@ std::string summary_table(const std::vector<ImitationSummary>& summaries) {
   std::string table = std::string("| policy | demonstrations | ") + (by_target ? "target (m/s) | " : "") +
                       "n | median \\|Δspeed\\| (m/s) | mean \\|Δspeed\\| (m/s) | median speed (m/s) | falls |\n" +
                       "|---|---|" + (by_target ? "---:|" : "") + "---:|---:|---:|---:|---:|\n";
-  char line[320];
   for (const auto& s : summaries) {
-    char target[32] = "";
-    if (by_target) std::snprintf(target, sizeof target, " %g |", s.target);
-    std::snprintf(line, sizeof line, "| %s | %s |%s %d | %.3f | %.3f | %.3f | %.1f%% |\n", s.policy.c_str(),
-                  s.held_out ? "held-out experts (one-shot)" : "training experts", target, s.demonstrations,
-                  s.median_abs_difference, s.mean_abs_difference, s.median_achieved_speed, 100.0 * s.fall_rate);
-    table += line;
+    const std::string target = by_target ? fmt::format(" {:g} |", s.target) : "";
+    table += fmt::format("| {} | {} |{} {} | {:.3f} | {:.3f} | {:.3f} | {:.1f}% |\n", s.policy,
+                         s.held_out ? "held-out experts (one-shot)" : "training experts", target, s.demonstrations,
+                         s.median_abs_difference, s.mean_abs_difference, s.median_achieved_speed, 100.0 * s.fall_rate);
   }
   return table;
 }
@@ -148,21 +143,15 @@ std::vector<ModeCoverage> mode_coverages(const std::vector<ImitationRow>& rows, 
 
 std::string mode_table(const std::vector<ModeCoverage>& coverages, const std::vector<double>& targets) {
   std::string table = "| speeds of |", rule = "|---|";
-  char cell[64];
   for (const double t : targets) {
-    std::snprintf(cell, sizeof cell, " near %g m/s |", t);
-    table += cell;
+    table += fmt::format(" near {:g} m/s |", t);
     rule += "---:|";
   }
   table += " modes covered |\n" + rule + "---:|\n";
   for (const auto& c : coverages) {
     table += "| " + c.source + " |";
-    for (const double f : c.fractions) {
-      std::snprintf(cell, sizeof cell, " %.0f%% |", 100.0 * f);
-      table += cell;
-    }
-    std::snprintf(cell, sizeof cell, " %d of %zu |\n", c.covered, targets.size());
-    table += cell;
+    for (const double f : c.fractions) table += fmt::format(" {:.0f}% |", 100.0 * f);
+    table += fmt::format(" {} of {} |\n", c.covered, targets.size());
   }
   return table;
 }
