@@ -1,7 +1,7 @@
 #include "bench/gail_bench.h"
 
-#include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <random>
 
 #include "util/world.h"
@@ -56,39 +56,32 @@ std::string format_gail_bench(const GailBenchOptions& o, const GailBenchResult& 
   const double per_it = r.seconds_per_iteration();
   const auto share = [&](double seconds) { return 100.0 * seconds / r.phases.total(); };
   const auto phase = [&](const char* name, double seconds) {
-    char line[160];
-    std::snprintf(line, sizeof line, "  %-16s %8.3f s  %5.1f%%\n", name, seconds / r.iterations, share(seconds));
-    return std::string(line);
+    return fmt::format("  {:<16} {:8.3f} s  {:5.1f}%\n", name, seconds / r.iterations, share(seconds));
   };
-  char head[640];
-  std::snprintf(head, sizeof head,
-                "bench gail: %s mode, %d environments x %lld steps per iteration on %d rank(s) x %d env thread(s), "
-                "%d timed iterations (after one warm-up), %d Torch thread(s)\n"
-                "per iteration      %8.3f s\n",
-                to_string(o.gail.mode).c_str(), o.gail.num_envs,
-                static_cast<long long>(r.steps_per_iteration / o.gail.num_envs), r.ranks, o.gail.env_threads,
-                r.iterations, torch::get_num_threads(), per_it);
-  if (r.ranks > 1) {
-    char steps[160];
-    std::snprintf(steps, sizeof steps,
-                  "env steps/s        %8.0f during fine-tuning (rank 0's clock)\n"
-                  "ceilings           not measured under mpirun: see scripts/bench/gail_ranks.sh\n",
-                  r.env_steps_per_s());
-    return std::string(head) + phase("rollout", r.phases.rollout) + phase("TRPO + critic", r.phases.policy_update) +
-           phase("discriminator", r.phases.discriminator) + phase("log + checkpoint", r.phases.bookkeeping) + steps;
-  }
-  char tail[640];
-  std::snprintf(tail, sizeof tail,
-                "env steps/s        %8.0f during fine-tuning\n"
-                "ceilings           %8.0f control steps/s raw physics on %d cores at once (%.0f on one), %.0f VecEnv + 2x%d tanh MLP\n"
-                "ratio              %8.3f of the all-core raw physics ceiling%s, %.3f of one core's, %.3f of VecEnv + MLP\n",
-                r.env_steps_per_s(), r.physics.all_core_control_steps_per_s, r.physics.cores,
-                r.physics.raw_control_steps_per_s, r.physics.vec_control_steps_per_s, PhysicsBenchOptions().hidden,
-                r.all_core_ratio(), r.all_core_ratio() >= 0.7 ? " (goal >= 0.7: met)" : " (goal >= 0.7: NOT met)",
-                r.env_steps_per_s() / r.physics.raw_control_steps_per_s,
-                r.env_steps_per_s() / r.physics.vec_control_steps_per_s);
-  return std::string(head) + phase("rollout", r.phases.rollout) + phase("TRPO + critic", r.phases.policy_update) +
-         phase("discriminator", r.phases.discriminator) + phase("log + checkpoint", r.phases.bookkeeping) + tail;
+  const std::string head = fmt::format(
+      "bench gail: {} mode, {} environments x {} steps per iteration on {} rank(s) x {} env thread(s), "
+      "{} timed iterations (after one warm-up), {} Torch thread(s)\n"
+      "per iteration      {:8.3f} s\n",
+      to_string(o.gail.mode), o.gail.num_envs, r.steps_per_iteration / o.gail.num_envs, r.ranks, o.gail.env_threads,
+      r.iterations, torch::get_num_threads(), per_it);
+  const std::string phases = phase("rollout", r.phases.rollout) + phase("TRPO + critic", r.phases.policy_update) +
+                             phase("discriminator", r.phases.discriminator) +
+                             phase("log + checkpoint", r.phases.bookkeeping);
+  if (r.ranks > 1)
+    return head + phases +
+           fmt::format("env steps/s        {:8.0f} during fine-tuning (rank 0's clock)\n"
+                       "ceilings           not measured under mpirun: see scripts/bench/gail_ranks.sh\n",
+                       r.env_steps_per_s());
+  return head + phases +
+         fmt::format(
+             "env steps/s        {:8.0f} during fine-tuning\n"
+             "ceilings           {:8.0f} control steps/s raw physics on {} cores at once ({:.0f} on one), {:.0f} VecEnv + 2x{} tanh MLP\n"
+             "ratio              {:8.3f} of the all-core raw physics ceiling{}, {:.3f} of one core's, {:.3f} of VecEnv + MLP\n",
+             r.env_steps_per_s(), r.physics.all_core_control_steps_per_s, r.physics.cores,
+             r.physics.raw_control_steps_per_s, r.physics.vec_control_steps_per_s, PhysicsBenchOptions().hidden,
+             r.all_core_ratio(), r.all_core_ratio() >= 0.7 ? " (goal >= 0.7: met)" : " (goal >= 0.7: NOT met)",
+             r.env_steps_per_s() / r.physics.raw_control_steps_per_s,
+             r.env_steps_per_s() / r.physics.vec_control_steps_per_s);
 }
 
 nlohmann::json gail_bench_json(const GailBenchOptions& o, const GailBenchResult& r) {

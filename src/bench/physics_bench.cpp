@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
+#include <fmt/format.h>
 #include <thread>
 #include <vector>
 
@@ -96,21 +96,17 @@ PhysicsBenchResult run_physics_bench(const PhysicsBenchOptions& options) {
 }
 
 std::string format_physics_bench(const PhysicsBenchOptions& o, const PhysicsBenchResult& r) {
-  char buf[1024];
-  std::snprintf(buf, sizeof buf,
-                "task                         %s\n"
-                "raw mj_step                  %.0f physics steps/s = %.0f control steps/s (1 core)\n"
-                "raw mj_step, every core      %.0f control steps/s (%d cores at once)\n"
-                "VecEnv + MLP policy          %.0f control steps/s (%d envs, %d thread%s, 2x%d tanh; %.0f%% of time in the policy)\n"
-                "ratio policy loop / raw      %.3f%s\n",
-                o.env.task.c_str(), r.raw_physics_steps_per_s, r.raw_control_steps_per_s,
-                r.all_core_control_steps_per_s, r.cores,
-                r.vec_control_steps_per_s, o.num_envs, o.threads, o.threads == 1 ? "" : "s", o.hidden,
-                100 * r.policy_fraction, r.ratio(),
-                o.threads == 1 ? (r.ratio() >= 0.7 ? "   (target >= 0.7 on one core: met)"
-                                                   : "   (target >= 0.7 on one core: NOT met)")
-                               : "   (several threads: compare with the one-core ceiling x threads)");
-  return buf;
+  return fmt::format(
+      "task                         {}\n"
+      "raw mj_step                  {:.0f} physics steps/s = {:.0f} control steps/s (1 core)\n"
+      "raw mj_step, every core      {:.0f} control steps/s ({} cores at once)\n"
+      "VecEnv + MLP policy          {:.0f} control steps/s ({} envs, {} thread{}, 2x{} tanh; {:.0f}% of time in the policy)\n"
+      "ratio policy loop / raw      {:.3f}{}\n",
+      o.env.task, r.raw_physics_steps_per_s, r.raw_control_steps_per_s, r.all_core_control_steps_per_s, r.cores,
+      r.vec_control_steps_per_s, o.num_envs, o.threads, o.threads == 1 ? "" : "s", o.hidden, 100 * r.policy_fraction,
+      r.ratio(),
+      o.threads == 1 ? (r.ratio() >= 0.7 ? "   (target >= 0.7 on one core: met)" : "   (target >= 0.7 on one core: NOT met)")
+                     : "   (several threads: compare with the one-core ceiling x threads)");
 }
 
 }  // namespace vaegail

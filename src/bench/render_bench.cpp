@@ -1,8 +1,8 @@
 #include "bench/render_bench.h"
 
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include "data/record.h"
@@ -59,15 +59,13 @@ RenderBenchResult run_render_bench(const RenderBenchOptions& options) {
 }
 
 std::string format_render_bench(const RenderBenchOptions& options, const RenderBenchResult& r) {
-  char text[600];
-  std::snprintf(text, sizeof text,
-                "render %s at %dx%d, %d frames on %s\n"
-                "  draw (mjv_updateScene + mjr_render + mjr_readPixels): %7.1f frames/s\n"
-                "  encode (yuv420p + libx264 veryfast):                  %7.1f frames/s\n"
-                "  draw + encode:                                        %7.1f frames/s\n",
-                options.env.task.c_str(), options.width, options.height, r.frames, r.gl_renderer.c_str(),
-                r.draw_fps(), r.encode_fps(), r.total_fps());
-  return text;
+  return fmt::format(
+      "render {} at {}x{}, {} frames on {}\n"
+      "  draw (mjv_updateScene + mjr_render + mjr_readPixels): {:7.1f} frames/s\n"
+      "  encode (yuv420p + libx264 veryfast):                  {:7.1f} frames/s\n"
+      "  draw + encode:                                        {:7.1f} frames/s\n",
+      options.env.task, options.width, options.height, r.frames, r.gl_renderer, r.draw_fps(), r.encode_fps(),
+      r.total_fps());
 }
 
 }  // namespace vaegail

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
+#include <fmt/format.h>
 
 #include "util/malloc_tuning.h"
 #include "vae/trajectory_vae.h"
@@ -110,19 +110,17 @@ VaeBenchResult run_vae_bench(const VaeBenchOptions& o) {
 
 std::string format_vae_bench(const VaeBenchOptions& o, const VaeBenchResult& r) {
   const double epoch = r.epoch_seconds(o);
-  char buf[2048];
-  std::snprintf(
-      buf, sizeof buf,
-      "VAE '%s' (LSTM %d, z %d, WaveNet %d x %d ch, K %d), batch %d x %d steps, %d torch thread%s\n"
-      "sgemm ceiling          %.1f GFLOP/s [%d x %d] x [%d x %d] (state decoder's GEMM), %.1f GFLOP/s 1024^3\n"
-      "training step          %.3f s (forward + backward + Adam) = %.0f trajectory-steps/s\n"
-      "  encoder (BiLSTM)     %.3f s forward + backward\n"
-      "  action decoder       %.3f s\n"
-      "  state decoder        %.3f s = %.1f GFLOP/s = %.0f%% of the sgemm ceiling\n"
-      "conv1d reference       %.3f s state decoder alone: the fused kernel is %.1fx faster\n"
-      "peak RSS               %.0f MB\n"
-      "projected epoch        %.1f s for %d episodes x %d steps (target < %.0f s: %s)\n",
-      o.config.name.c_str(), o.config.lstm_hidden, o.config.latent_dim, o.config.wavenet_layers,
+  return fmt::format(
+      "VAE '{}' (LSTM {}, z {}, WaveNet {} x {} ch, K {}), batch {} x {} steps, {} torch thread{}\n"
+      "sgemm ceiling          {:.1f} GFLOP/s [{} x {}] x [{} x {}] (state decoder's GEMM), {:.1f} GFLOP/s 1024^3\n"
+      "training step          {:.3f} s (forward + backward + Adam) = {:.0f} trajectory-steps/s\n"
+      "  encoder (BiLSTM)     {:.3f} s forward + backward\n"
+      "  action decoder       {:.3f} s\n"
+      "  state decoder        {:.3f} s = {:.1f} GFLOP/s = {:.0f}% of the sgemm ceiling\n"
+      "conv1d reference       {:.3f} s state decoder alone: the fused kernel is {:.1f}x faster\n"
+      "peak RSS               {:.0f} MB\n"
+      "projected epoch        {:.1f} s for {} episodes x {} steps (target < {:.0f} s: {})\n",
+      o.config.name, o.config.lstm_hidden, o.config.latent_dim, o.config.wavenet_layers,
       o.config.wavenet_channels, o.config.mixture_components, o.batch, o.steps, r.threads,
       r.threads == 1 ? "" : "s", r.sgemm_model_gflops, o.batch * o.steps * o.config.state_dim,
       2 * o.config.wavenet_channels, 2 * o.config.wavenet_channels, 2 * o.config.wavenet_channels,
@@ -132,7 +130,6 @@ std::string format_vae_bench(const VaeBenchOptions& o, const VaeBenchResult& r) 
       r.reference_state_decoder_seconds / r.state_decoder_seconds, r.peak_rss_mb, epoch,
       o.epoch_episodes, o.epoch_steps, o.epoch_target_seconds,
       epoch < o.epoch_target_seconds ? "met" : "NOT met");
-  return buf;
 }
 
 }  // namespace vaegail
