@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <map>
 #include <memory>
 
@@ -22,9 +23,8 @@ struct InfoOptions {
 std::string context_label(const std::vector<double>& context, const std::vector<std::string>& names) {
   if (context.empty()) return "all episodes";
   std::string label;
-  char value[32];
   for (size_t i = 0; i < context.size(); ++i) {
-    std::snprintf(value, sizeof value, "%g", context[i]);
+    const std::string value = fmt::format("{:g}", context[i]);
     const std::string name = i < names.size() ? names[i] : "context_" + std::to_string(i);
     label += (i ? ", " : "") + (context.size() == 1 ? name + " " : name + "=") + value;
   }

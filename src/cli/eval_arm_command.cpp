@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <map>
 #include <memory>
 
@@ -126,10 +127,7 @@ std::string distance_line(const std::string& which, const std::vector<eval::Reac
   for (const auto& r : rows)
     if (r.held_out == held_out) d.push_back(r.final_distance());
   const auto s = eval::summarize_distances(d);
-  char line[200];
-  std::snprintf(line, sizeof line, "| %s | %d | %.1f | %.1f | %.1f |\n", which.c_str(), s.n, 100 * s.mean,
-                100 * s.median, 100 * s.p90);
-  return line;
+  return fmt::format("| {} | {} | {:.1f} | {:.1f} | {:.1f} |\n", which, s.n, 100 * s.mean, 100 * s.median, 100 * s.p90);
 }
 
 std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pairs, const std::string& pool,
@@ -144,28 +142,24 @@ std::string interpolation_summary(const std::vector<eval::InterpolationPair>& pa
       if (p.alphas[k] == 0.5) mid_along.push_back(p.along[k]);
     }
   }
-  char text[700];
-  std::snprintf(text, sizeof text,
-                "Latent interpolation over %zu pairs of %s demonstrations (different experts), alpha in "
-                "{0, 0.25, 0.5, 0.75, 1}:\n\n"
-                "- end point moves monotonically from a's end to b's (tolerance %.2f of the segment): **%d of %zu "
-                "pairs (%.0f%%)**\n"
-                "- distance of the reached end points from the line through the two demonstrations' end points: "
-                "median %.1f cm, 90th percentile %.1f cm (median %.0f%% of the segment's length)\n"
-                "- at alpha 0.5 the end point lies at median s = %.2f along the segment (0: a's end, 1: b's end)\n",
-                pairs.size(), pool.c_str(), tolerance, monotone, pairs.size(), 100.0 * monotone / std::max<size_t>(pairs.size(), 1),
-                100 * vae::median(off), 100 * eval::summarize_distances(off).p90, 100 * vae::median(off_relative),
-                vae::median(mid_along));
+  const std::string text = fmt::format(
+      "Latent interpolation over {} pairs of {} demonstrations (different experts), alpha in "
+      "{{0, 0.25, 0.5, 0.75, 1}}:\n\n"
+      "- end point moves monotonically from a's end to b's (tolerance {:.2f} of the segment): **{} of {} "
+      "pairs ({:.0f}%)**\n"
+      "- distance of the reached end points from the line through the two demonstrations' end points: "
+      "median {:.1f} cm, 90th percentile {:.1f} cm (median {:.0f}% of the segment's length)\n"
+      "- at alpha 0.5 the end point lies at median s = {:.2f} along the segment (0: a's end, 1: b's end)\n",
+      pairs.size(), pool, tolerance, monotone, pairs.size(), 100.0 * monotone / std::max<size_t>(pairs.size(), 1),
+      100 * vae::median(off), 100 * eval::summarize_distances(off).p90, 100 * vae::median(off_relative),
+      vae::median(mid_along));
   // The α steps of a short segment are no longer than the imitation error itself.
   const std::vector<double> edges{0.2, 0.4};
   const auto bins = eval::monotone_by_segment_length(pairs, tolerance, edges);
   std::string by_length = "- monotone by segment length:";
   const char* names[] = {"under 20 cm", "20 to 40 cm", "40 cm or more"};
-  for (size_t i = 0; i < bins.size(); ++i) {
-    char part[80];
-    std::snprintf(part, sizeof part, "%s %s %d of %d", i ? ";" : "", names[i], bins[i].first, bins[i].second);
-    by_length += part;
-  }
+  for (size_t i = 0; i < bins.size(); ++i)
+    by_length += fmt::format("{} {} {} of {}", i ? ";" : "", names[i], bins[i].first, bins[i].second);
   return text + by_length + "\n";
 }
 
@@ -188,9 +182,7 @@ void write_interpolation_videos(const Env& env, const DemoSet& demos, const std:
     std::vector<std::string> captions;
     for (double alpha : kAlphas) {
       blends.push_back((1 - alpha) * z.of({a})[0] + alpha * z.of({b})[0]);
-      char caption[32];
-      std::snprintf(caption, sizeof caption, "alpha %.2f", alpha);
-      captions.push_back(caption);
+      captions.push_back(fmt::format("alpha {:.2f}", alpha));
     }
     std::vector<render::Clip> row{demo_clip(demos, a)};
     const std::vector<int64_t> starts(kAlphas.size(), a);

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <memory>
 #include <stdexcept>
 
@@ -126,10 +127,10 @@ void run_eval_walker(const EvalWalkerFlags& f) {
   fs::create_directories(f.out_dir);
   const auto modes = eval::mode_table(eval::mode_coverages(rows), eval::distinct_targets(rows));
   const eval::ModeCoverageOptions mode_rule;
-  char rule[160];
-  std::snprintf(rule, sizeof rule, "\nA target speed counts as a covered mode when at least %.0f%% of the average speeds lie "
-                "within %.1f m/s of it (training experts' demonstrations).\n\n", 100 * mode_rule.min_fraction,
-                mode_rule.radius);
+  const std::string rule = fmt::format(
+      "\nA target speed counts as a covered mode when at least {:.0f}% of the average speeds lie within {:.1f} m/s of it "
+      "(training experts' demonstrations).\n\n",
+      100 * mode_rule.min_fraction, mode_rule.radius);
   std::vector<eval::ImitationRow> training_rows;
   std::copy_if(rows.begin(), rows.end(), std::back_inserter(training_rows),
                [](const eval::ImitationRow& r) { return !r.held_out; });

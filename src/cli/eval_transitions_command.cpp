@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <set>
@@ -76,11 +78,8 @@ std::pair<torch::Tensor, torch::Tensor> pair_latents(vae::TrajectoryVae& model, 
 }
 
 std::string pair_title(const eval::TransitionRow& r, const std::string& noun) {
-  char title[160];
   const char* unit = noun == "speed" ? " m/s" : "";
-  std::snprintf(title, sizeof title, "#%lld (%s%s) to #%lld (%s%s)", static_cast<long long>(r.pair.from),
-                r.from.label.c_str(), unit, static_cast<long long>(r.pair.to), r.to.label.c_str(), unit);
-  return title;
+  return fmt::format("#{} ({}{}) to #{} ({}{})", r.pair.from, r.from.label, unit, r.pair.to, r.to.label, unit);
 }
 
 // The pairs a figure or the videos show, with their latents and their demonstrations' behaviours.
@@ -126,33 +125,27 @@ void write_speed_figure(const Env& env, const DemoSet& demos, const Shown& shown
   const int speed = static_cast<int>(speed_column - names.begin()), n_features = static_cast<int>(names.size());
   const double dt = env.control_timestep(), end = env.episode_length() * dt;
   std::string csv = "panel,series,style,x,y\n";
-  char line[256];
   for (const auto& p : policies) {
     const auto outcomes = eval::roll_out_transitions(env, demos, shown.pairs, shown.z_from, shown.z_to, p.policy,
                                                      blend, f.transition.rollout);
     for (size_t k = 0; k < outcomes.size(); ++k)
-      for (int t = 1; t <= outcomes[k].episode.length(); ++t) {
-        std::snprintf(line, sizeof line, "%s,%s,solid,%.4f,%.5f\n", shown.titles[k].c_str(), p.name.c_str(), t * dt,
-                      outcomes[k].episode.features[static_cast<size_t>(t) * n_features + speed]);
-        csv += line;
-      }
+      for (int t = 1; t <= outcomes[k].episode.length(); ++t)
+        fmt::format_to(std::back_inserter(csv), "{},{},solid,{:.4f},{:.5f}\n", shown.titles[k], p.name, t * dt,
+                       outcomes[k].episode.features[static_cast<size_t>(t) * n_features + speed]);
   }
   for (size_t k = 0; k < shown.pairs.size(); ++k) {
     for (const auto& [series, value] :
          {std::pair{"demonstration A", shown.from[k].speed}, {"demonstration B", shown.to[k].speed}})
-      for (const double x : {0.0, end}) {
-        std::snprintf(line, sizeof line, "%s,%s,dashed,%.4f,%.5f\n", shown.titles[k].c_str(), series, x, value);
-        csv += line;
-      }
+      for (const double x : {0.0, end})
+        fmt::format_to(std::back_inserter(csv), "{},{},dashed,{:.4f},{:.5f}\n", shown.titles[k], series, x, value);
   }
   const std::string figure = f.out_dir + "/speed_over_time.png";
   write_file_atomically(figure_data_path(figure), csv);
-  char shade[64], smooth[16], title[160];
-  std::snprintf(shade, sizeof shade, "%.4f,%.4f", blend.start * dt, blend.end() * dt);
-  const int window = std::max(1, static_cast<int>(std::lround(1.0 / dt)));
-  std::snprintf(smooth, sizeof smooth, "%d", window);
-  std::snprintf(title, sizeof title, "forward speed through a transition (1 s running mean; blend shaded; measured "
-                "from %.2f s)", (blend.end() + f.transition.settle) * dt);
+  const std::string shade = fmt::format("{:.4f},{:.4f}", blend.start * dt, blend.end() * dt);
+  const std::string smooth = std::to_string(std::max(1, static_cast<int>(std::lround(1.0 / dt))));
+  const std::string title = fmt::format(
+      "forward speed through a transition (1 s running mean; blend shaded; measured from {:.2f} s)",
+      (blend.end() + f.transition.settle) * dt);
   if (draw_figure_if_possible("timeseries.py", {"--csv", figure_data_path(figure), "--shade", shade, "--smooth",
                                                 smooth, "--xlabel", "time (s)", "--ylabel", "forward speed (m/s)",
                                                 "--title", title, "--out", figure, "--height", "720"}))
@@ -173,10 +166,8 @@ void write_videos(const Env& env, const DemoSet& demos, const Shown& shown,
       auto outcome = eval::roll_out_transitions(env, demos, {pair}, shown.z_from.narrow(0, k, 1),
                                                 shown.z_to.narrow(0, k, 1), policies[p].policy, blend,
                                                 f.transition.rollout);
-      char caption[160];
-      std::snprintf(caption, sizeof caption, "%s\nz_A to z_B at %.1f s", captions[p].caption.c_str(),
-                    blend.start * env.control_timestep());
-      row.push_back({caption, std::move(outcome[0].episode)});
+      row.push_back({fmt::format("{}\nz_A to z_B at {:.1f} s", captions[p].caption, blend.start * env.control_timestep()),
+                     std::move(outcome[0].episode)});
     }
     write_video(env, {row}, f.video,
                 dir + "/pair_" + std::to_string(pair.from) + "_to_" + std::to_string(pair.to) + ".mp4");
@@ -201,15 +192,13 @@ void run_eval_transitions(const EvalTransitionsFlags& f) {
   const auto blend = eval::mid_episode_blend(env.episode_length(), f.transition.blend_width);
   const double dt = env.control_timestep();
   const int measured_from = blend.end() + f.transition.settle;
-  char method[640];
-  std::snprintf(method, sizeof method,
-                "%zu pairs (A, B) and %zu references (B, B). From A's initial state conditioned on z_A; z blended "
-                "linearly to z_B over control steps %d..%d (%.2f..%.2f s of %.2f s); the %s measured from step %d "
-                "(%.2f s, after %d settling steps) to the end. Matched B: stayed up to the end and %s.\n\n",
-                sampled.size(), pairs.size() - sampled.size(), blend.start, blend.end() - 1, blend.start * dt,
-                blend.end() * dt, env.episode_length() * dt, judge.noun.c_str(), measured_from, measured_from * dt,
-                f.transition.settle, judge.rule.c_str());
-  const std::string table = std::string(method) +
+  const std::string method = fmt::format(
+      "{} pairs (A, B) and {} references (B, B). From A's initial state conditioned on z_A; z blended "
+      "linearly to z_B over control steps {}..{} ({:.2f}..{:.2f} s of {:.2f} s); the {} measured from step {} "
+      "({:.2f} s, after {} settling steps) to the end. Matched B: stayed up to the end and {}.\n\n",
+      sampled.size(), pairs.size() - sampled.size(), blend.start, blend.end() - 1, blend.start * dt, blend.end() * dt,
+      env.episode_length() * dt, judge.noun, measured_from, measured_from * dt, f.transition.settle, judge.rule);
+  const std::string table = method +
                             eval::transition_table(eval::summarize_transitions(rows), judge.noun) +
                             "\nBy " + judge.noun + " of A and of B (pairs of different " + judge.noun + "s):\n\n" +
                             eval::transition_table(eval::summarize_transitions(rows, /*by_labels=*/true), judge.noun);

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <functional>
 #include <mutex>
 #include <numeric>
@@ -131,25 +132,21 @@ void run_train_ppo(const TrainFlags& f) {
 // One line per reaching expert: its target, the best noise-free return (of 50) and the final
 // grip-to-target distance and path ratio of that episode; then the medians.
 std::string arm_expert_table(const std::vector<ArmExpertSpec>& specs, const std::vector<ArmExpertResult>& results) {
-  std::string out;
-  char line[160];
-  std::snprintf(line, sizeof line, "%-10s %28s %12s %16s %11s\n", "expert", "target (m)", "best return", "final dist (cm)",
-                "path ratio");
-  out += line;
+  std::string out = fmt::format("{:<10} {:>28} {:>12} {:>16} {:>11}\n", "expert", "target (m)", "best return",
+                                "final dist (cm)", "path ratio");
   std::vector<double> distances, ratios;
   for (size_t i = 0; i < specs.size(); ++i) {
-    std::snprintf(line, sizeof line, "%-10s (%7.3f, %7.3f, %7.3f) %12.2f %16.1f %11.2f\n", specs[i].id.c_str(),
-                  specs[i].target[0], specs[i].target[1], specs[i].target[2], results[i].best_return,
-                  100 * results[i].final_distance, results[i].path_ratio);
-    out += line;
+    out += fmt::format("{:<10} ({:7.3f}, {:7.3f}, {:7.3f}) {:12.2f} {:16.1f} {:11.2f}\n", specs[i].id, specs[i].target[0],
+                       specs[i].target[1], specs[i].target[2], results[i].best_return, 100 * results[i].final_distance,
+                       results[i].path_ratio);
     distances.push_back(results[i].final_distance);
     ratios.push_back(results[i].path_ratio);
   }
   std::sort(distances.begin(), distances.end());
   std::sort(ratios.begin(), ratios.end());
-  std::snprintf(line, sizeof line, "%zu experts, median final distance %.1f cm, worst %.1f cm; median path ratio %.2f\n",
-                distances.size(), 100 * distances[distances.size() / 2], 100 * distances.back(), ratios[ratios.size() / 2]);
-  return out + line;
+  return out + fmt::format("{} experts, median final distance {:.1f} cm, worst {:.1f} cm; median path ratio {:.2f}\n",
+                           distances.size(), 100 * distances[distances.size() / 2], 100 * distances.back(),
+                           ratios[ratios.size() / 2]);
 }
 
 // The arm's experts train on the CPU whatever --device says: DDPG's one-sample steps would
@@ -375,10 +372,8 @@ void run_plan(const PlanFlags& f) {
     log = std::make_unique<CsvLog>(f.csv, std::vector<std::string>{"style", "episode", "steps", "fell",
                                                                    "mean_speed", "mean_reward", "seconds_per_step"});
   Progress progress("plan", static_cast<std::int64_t>(f.styles.size()) * f.episodes * f.steps, "steps");
-  char line[160];
-  std::snprintf(line, sizeof line, "%-8s %7s %6s %5s %10s %11s %8s\n", "style", "episode", "steps", "fell",
-                "speed m/s", "reward/step", "s/step");
-  std::string table = line;
+  std::string table = fmt::format("{:<8} {:>7} {:>6} {:>5} {:>10} {:>11} {:>8}\n", "style", "episode", "steps", "fell",
+                                  "speed m/s", "reward/step", "s/step");
   for (int style : f.styles) {
     for (int episode = 0; episode < f.episodes; ++episode) {
       env.set_context({static_cast<double>(style)});
@@ -408,10 +403,10 @@ void run_plan(const PlanFlags& f) {
       }
       progress.advance(f.steps - t);
       const double per_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / t;
-      std::snprintf(line, sizeof line, "%-8s %7d %6d %5s %10.2f %11.3f %8.2f", names[style].c_str(), episode, t,
-                    fell ? "yes" : "no", speed / t, reward / t, per_step);
+      const std::string line = fmt::format("{:<8} {:7} {:6} {:>5} {:10.2f} {:11.3f} {:8.2f}", names[style], episode, t,
+                                           fell ? "yes" : "no", speed / t, reward / t, per_step);
       progress.set_status(line);
-      table += std::string(line) + "\n";
+      table += line + "\n";
       if (log)
         log->write({{"style", style},
                     {"episode", episode},

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <memory>
 #include <stdexcept>
 
@@ -69,14 +70,9 @@ void run_gail(GailFlags f) {
   progress.resume(trainer.iteration());
   if (f.options.minutes > 0) progress.set_time_budget(60 * f.options.minutes);
   trainer.train([&](const GailMetrics& m) {
-    char status[160];
-    std::snprintf(status, sizeof status, "D acc %.2f/%.2f  reward %.2f  return %.1f  falls %.2f", m.demo_accuracy,
-                  m.policy_accuracy, m.gail_reward, m.env_return, m.fall_rate);
-    std::string line = status;
-    for (const auto& [name, value] : m.task) {
-      std::snprintf(status, sizeof status, "  %s %.2f", name.c_str(), value);
-      line += status;
-    }
+    std::string line = fmt::format("D acc {:.2f}/{:.2f}  reward {:.2f}  return {:.1f}  falls {:.2f}", m.demo_accuracy,
+                                   m.policy_accuracy, m.gail_reward, m.env_return, m.fall_rate);
+    for (const auto& [name, value] : m.task) line += fmt::format("  {} {:.2f}", name, value);
     progress.set_status(line);
     progress.set(m.iteration);
   });
@@ -125,9 +121,7 @@ void run_bc(BcFlags f) {
   const DemoSet demos = read_demos(f.demos);
   Progress progress("bc", f.options.epochs, "epochs");
   train_bc(demos, f.options, f.run_dir, [&](const BcEpoch& e) {
-    char status[80];
-    std::snprintf(status, sizeof status, "nll train %.3f  val %.3f", e.train_nll, e.val_nll);
-    progress.set_status(status);
+    progress.set_status(fmt::format("nll train {:.3f}  val {:.3f}", e.train_nll, e.val_nll));
     progress.set(e.epoch);
   });
   progress.finish();

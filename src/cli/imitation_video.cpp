@@ -1,6 +1,7 @@
 #include "cli/imitation_video.h"
 
 #include <cstdio>
+#include <fmt/format.h>
 #include <map>
 #include <stdexcept>
 
@@ -35,11 +36,8 @@ render::Clip demo_clip(const DemoSet& demos, int64_t episode) {
                                 std::to_string(demos.episodes.size()) + ", from 0)");
   const Episode& e = demos.episodes[episode];
   std::string caption = "demonstration #" + std::to_string(episode);
-  for (size_t k = 0; k < e.context.size() && k < demos.header.context_names.size(); ++k) {
-    char value[64];
-    std::snprintf(value, sizeof value, "%s%s %.3g", k ? ", " : "\n", demos.header.context_names[k].c_str(), e.context[k]);
-    caption += value;
-  }
+  for (size_t k = 0; k < e.context.size() && k < demos.header.context_names.size(); ++k)
+    caption += fmt::format("{}{} {:.3g}", k ? ", " : "\n", demos.header.context_names[k], e.context[k]);
   return {caption, e};
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -97,11 +98,9 @@ std::string coordinates_csv(const CsvTable& table, const std::vector<int>& rows,
   std::string out;
   for (const auto& c : kept) out += c + ",";
   out += "tsne_x,tsne_y\n";
-  char buf[64];
   for (size_t i = 0; i < rows.size(); ++i) {
     for (const auto& column : cells) out += column[rows[i]] + ",";
-    std::snprintf(buf, sizeof buf, "%.9g,%.9g\n", embedding[2 * i], embedding[2 * i + 1]);
-    out += buf;
+    out += fmt::format("{:.9g},{:.9g}\n", embedding[2 * i], embedding[2 * i + 1]);
   }
   return out;
 }
@@ -139,10 +138,8 @@ void run_tsne(const TsneCommandOptions& o) {
   const auto result = eval::tsne(data, n, d, o.tsne);
   const CoordinatesFile coordinates(o.coords_out);
   write_file_atomically(coordinates.path(), coordinates_csv(table, rows, result.embedding));
-  char title[128];
-  std::snprintf(title, sizeof title, "t-SNE of %d embeddings (perplexity %g)", n, o.tsne.perplexity);
   FigureOptions figure = o.figure;
-  if (figure.title.empty()) figure.title = title;
+  if (figure.title.empty()) figure.title = fmt::format("t-SNE of {} embeddings (perplexity {:g})", n, o.tsne.perplexity);
   std::vector<std::string> args{"--csv", coordinates.path(), "--x", "tsne_x", "--y", "tsne_y", "--color", o.color,
                                 "--xlabel", "t-SNE 1", "--ylabel", "t-SNE 2"};
   for (const auto& a : figure.args()) args.push_back(a);

@@ -2,6 +2,7 @@
 // as the same command lines a user would type (each is echoed before it runs).
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
 #include <stdexcept>
 
 #include "bench/physics_bench.h"
@@ -61,13 +62,10 @@ void run_quickstart(const QuickstartOptions& o) {
   run_command_line("vae knn --embeddings " + embeddings + " --k 5");
 
   section("5. fine-tune with diverse GAIL, and train the baselines (small scale)");
-  char minutes[32];
-  std::snprintf(minutes, sizeof minutes, "%g", o.gail_minutes);
   run_command_line("gail train --mode diverse" + demos + vae + " --run-dir " + o.out_dir + "/diverse_gail --minutes " +
-                   minutes + envs);
-  std::snprintf(minutes, sizeof minutes, "%g", o.plain_minutes);
-  run_command_line("gail train --mode plain" + demos + " --run-dir " + o.out_dir + "/plain_gail --minutes " + minutes +
-                   envs);
+                   fmt::format("{:g}", o.gail_minutes) + envs);
+  run_command_line("gail train --mode plain" + demos + " --run-dir " + o.out_dir + "/plain_gail --minutes " +
+                   fmt::format("{:g}", o.plain_minutes) + envs);
   run_command_line("bc train" + demos + " --run-dir " + o.out_dir + "/bc --epochs " + std::to_string(o.bc_epochs));
 
   section("6. evaluate: imitate demonstrations, compare speeds (the paper's Figure 4)");

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fmt/format.h>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
 
@@ -317,12 +319,9 @@ void run_imitate(const ImitateFlags& f) {
     demo_speed.push_back(vae::achieved_speed(l.demos, episodes[j]));
     imitation_speed.push_back(o.achieved_speed);
     falls += o.fell;
-    char row[256];
-    std::snprintf(row, sizeof row, "%lld,%s,%.9g,%d,%.6f,%.6f,%.6f,%d,%d\n", static_cast<long long>(episodes[j]),
-                  e.expert_id.c_str(), e.context.empty() ? std::nan("") : e.context[0], vae::is_held_out(e) ? 1 : 0,
-                  demo_speed.back(), o.achieved_speed, std::abs(demo_speed.back() - o.achieved_speed), o.fell ? 1 : 0,
-                  o.episode.length());
-    csv += row;
+    fmt::format_to(std::back_inserter(csv), "{},{},{:.9g},{},{:.6f},{:.6f},{:.6f},{},{}\n", episodes[j], e.expert_id,
+                   e.context.empty() ? std::nan("") : e.context[0], vae::is_held_out(e) ? 1 : 0, demo_speed.back(),
+                   o.achieved_speed, std::abs(demo_speed.back() - o.achieved_speed), o.fell ? 1 : 0, o.episode.length());
   }
   if (!f.out.empty()) write_file_atomically(f.out, csv);
   std::printf("imitated %zu demonstrations%s: median |speed difference| %.3f m/s, fall rate %.1f%%%s%s\n",
