@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TrainFlags {
+struct ExpertTrainFlags {
   std::string task = "walker";
   std::string out_dir = "experts/walker";
   std::string grid = "paper";
@@ -93,7 +93,7 @@ void train_in_parallel(const std::vector<std::string>& ids, std::vector<std::int
 
 // The config's "grid", or its "grids" one after another (the humanoid's training and evaluation
 // controllers, seeded apart); the walker's --grid without either. Every grid trains on --task.
-std::vector<ExpertSpec> ppo_expert_specs(const TrainFlags& f, const nlohmann::json& config) {
+std::vector<ExpertSpec> ppo_expert_specs(const ExpertTrainFlags& f, const nlohmann::json& config) {
   std::vector<ExpertGrid> grids;
   if (config.contains("grids")) grids = config["grids"].get<std::vector<ExpertGrid>>();
   if (config.contains("grid")) grids.push_back(config["grid"].get<ExpertGrid>());
@@ -108,7 +108,7 @@ std::vector<ExpertSpec> ppo_expert_specs(const TrainFlags& f, const nlohmann::js
   return specs;
 }
 
-void run_train_ppo(const TrainFlags& f) {
+void run_train_ppo(const ExpertTrainFlags& f) {
   const nlohmann::json config = f.config.empty() ? nlohmann::json::object() : read_json_file(f.config);
   ExpertTrainOptions options;
   if (config.contains("training")) options = config["training"].get<ExpertTrainOptions>();
@@ -151,7 +151,7 @@ std::string arm_expert_table(const std::vector<ArmExpertSpec>& specs, const std:
 
 // The arm's experts train on the CPU whatever --device says: DDPG's one-sample steps would
 // spend their time in transfers.
-void run_train_arm(const TrainFlags& f) {
+void run_train_arm(const ExpertTrainFlags& f) {
   ArmExpertOptions options;
   if (!f.config.empty()) {
     const auto j = read_json_file(f.config);
@@ -175,7 +175,7 @@ void run_train_arm(const TrainFlags& f) {
   std::fputs(arm_expert_table(specs, results).c_str(), stdout);
 }
 
-void run_train(const TrainFlags& f) {
+void run_expert_train(const ExpertTrainFlags& f) {
   if (f.task == "arm") return run_train_arm(f);
   run_train_ppo(f);
 }
@@ -427,7 +427,7 @@ void add_expert_commands(CLI::App& app) {
   CLI::App* experts = app.add_subcommand("experts", "train and evaluate the RL experts that demonstrate");
   experts->require_subcommand(1);
 
-  auto t = std::make_shared<TrainFlags>();
+  auto t = std::make_shared<ExpertTrainFlags>();
   CLI::App* train = experts->add_subcommand("train", "train target-speed experts with PPO (resumable)");
   train->add_option("--task", t->task, "walker (PPO, target speeds), humanoid (PPO, styles; needs --config) or arm (DDPG, random reach targets)")
       ->check(CLI::IsMember({"walker", "humanoid", "arm"}))->capture_default_str();
@@ -442,7 +442,7 @@ void add_expert_commands(CLI::App& app) {
   train->add_option("--seed", t->seed, "arm: seed of the targets and of training")->capture_default_str();
   train->add_option("--jobs", t->jobs, "experts trained at once (one core each)")->check(CLI::Range(1, 64))->capture_default_str();
   add_device_option(*train, t->device);
-  train->callback([t] { run_train(*t); });
+  train->callback([t] { run_expert_train(*t); });
 
   auto e = std::make_shared<EvalFlags>();
   CLI::App* eval = experts->add_subcommand("eval", "walker: mean speed, distance to target and fall rate per expert and target; arm: final distance to the target");

@@ -83,7 +83,7 @@ Loaded load(const ModelFlags& f) {
 }
 
 // ---- vae train ------------------------------------------------------------------------
-struct TrainFlags {
+struct VaeTrainFlags {
   std::string demos, run_dir, preset = "walker", config, device = "cpu";
   int epochs = 100;
   int batch_size = 0;
@@ -94,7 +94,7 @@ struct TrainFlags {
 };
 
 // The run directory's own config when resuming, else the preset; then --config; then flags.
-vae::VaeConfig train_config(const TrainFlags& f, const DemoHeader& header) {
+vae::VaeConfig train_config(const VaeTrainFlags& f, const DemoHeader& header) {
   const std::string saved = (fs::path(f.run_dir) / "config.json").string();
   vae::VaeConfig c = fs::exists(saved) ? vae::VaeConfig::load(saved)
                                        : vae::VaeConfig::preset(f.preset, header.obs_dim(), header.act_dim());
@@ -106,7 +106,7 @@ vae::VaeConfig train_config(const TrainFlags& f, const DemoHeader& header) {
   return c;
 }
 
-void run_train(const TrainFlags& f) {
+void run_vae_train(const VaeTrainFlags& f) {
   auto demos = read_demos(f.demos);
   const auto config = train_config(f, demos.header);
   auto data = vae::make_demo_training_data(std::move(demos), config, f.seed);
@@ -134,7 +134,7 @@ void run_train(const TrainFlags& f) {
 }
 
 void add_train(CLI::App& vae) {
-  auto f = std::make_shared<TrainFlags>();
+  auto f = std::make_shared<VaeTrainFlags>();
   CLI::App* c = vae.add_subcommand("train", "train the VAE on demonstrations (rerun with the same --run-dir to resume)");
   c->add_option("--demos", f->demos, "demonstration file (.h5)")->required();
   c->add_option("--run-dir", f->run_dir, "config.json, metrics.csv, checkpoints/latest.pt")->required();
@@ -150,7 +150,7 @@ void add_train(CLI::App& vae) {
   c->add_option("--seed", f->seed, "initialisation, shuffling, noise and the validation split")->capture_default_str();
   c->add_flag("--keep-epochs", f->keep_epochs, "also keep every epoch's checkpoint as checkpoints/epoch_N.pt");
   add_device_option(*c, f->device, kDeviceHelp);
-  c->callback([f] { run_train(*f); });
+  c->callback([f] { run_vae_train(*f); });
 }
 
 // ---- vae embed ------------------------------------------------------------------------

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "env/registry.h"
+#include "env/test_support.h"
 
 namespace vaegail {
 namespace {
@@ -46,12 +47,6 @@ std::string hopper(const std::string& fall_height = "0.3") {
   std::string xml = kHopper;
   xml.replace(xml.find("FALL_HEIGHT"), 11, fall_height);
   return xml;
-}
-
-std::string write_temp(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / name;
-  std::ofstream(path) << text;
-  return path.string();
 }
 
 GenericTaskEnv make(const std::string& xml, GenericTaskOptions options = {}) {

@@ -10,7 +10,7 @@ namespace vaegail {
 
 namespace {
 constexpr int kRootQpos = 7;  // the free root's position and quaternion come first in qpos
-constexpr int kRootDofs = 6;  // and its linear and angular velocity first in qvel
+constexpr int kHumanoidRootDofs = 6;  // and its linear and angular velocity first in qvel
 
 MujocoEnvOptions humanoid_env_options(const HumanoidOptions& options) {
   MujocoEnvOptions o;
@@ -28,7 +28,7 @@ HumanoidEnv::HumanoidEnv(HumanoidOptions options)
 HumanoidEnv::HumanoidEnv(std::shared_ptr<const MujocoModel> model, HumanoidOptions options)
     : MujocoEnv(std::move(model), humanoid_env_options(options)), humanoid_options_(options) {
   const mjModel* m = model_->get();
-  if (m->nq != kRootQpos + kHinges || m->nv != kRootDofs + kHinges || m->nu != kHinges ||
+  if (m->nq != kRootQpos + kHinges || m->nv != kHumanoidRootDofs + kHinges || m->nu != kHinges ||
       m->jnt_type[0] != mjJNT_FREE)
     throw std::runtime_error(model_->source() + ": the humanoid needs a free root, 56 hinges and 56 motors");
   root_ = model_->id(mjOBJ_BODY, "root");
@@ -131,7 +131,7 @@ void HumanoidEnv::observe(float* out) const {
   const mjData* d = data();
   for (int j = 0; j < kHinges; ++j) {
     out[j] = static_cast<float>(d->qpos[kRootQpos + j]);
-    out[kHinges + j] = static_cast<float>(d->qvel[kRootDofs + j]);
+    out[kHinges + j] = static_cast<float>(d->qvel[kHumanoidRootDofs + j]);
   }
   float* o = out + 2 * kHinges;
   *o++ = static_cast<float>(root_height());

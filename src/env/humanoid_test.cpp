@@ -48,7 +48,7 @@ double expected_gear(const std::string& joint) {
   return 20;
 }
 
-std::vector<float> wobble(int t) {
+std::vector<float> hinge_wobble(int t) {
   std::vector<float> a(HumanoidEnv::kHinges);
   for (int i = 0; i < HumanoidEnv::kHinges; ++i) a[i] = 0.3f * std::sin(0.2 * t + i);
   return a;
@@ -195,8 +195,8 @@ TEST(Humanoid, SameSeedSameEpisodeBitForBit) {
   b.reset(21);
   std::vector<double> fa(a.feature_names().size()), fb(fa.size());
   for (int t = 0; t < 60; ++t) {
-    const StepOutcome oa = a.step(wobble(t).data());
-    const StepOutcome ob = b.step(wobble(t).data());
+    const StepOutcome oa = a.step(hinge_wobble(t).data());
+    const StepOutcome ob = b.step(hinge_wobble(t).data());
     EXPECT_EQ(oa.reward, ob.reward);
     EXPECT_EQ(oa.terminated, ob.terminated);
     ASSERT_EQ(a.observation(), b.observation()) << "step " << t;
@@ -230,7 +230,7 @@ TEST(Humanoid, ObservationAndFeaturesMatchTheSimulatorStateByHand) {
   const double push[6] = {0.5, -0.3, 0.2, 0.1, -0.1, 0.2};  // linear (world), angular (root frame)
   std::copy(push, push + 6, d->qvel);
   mj_forward(m, d);
-  for (int t = 0; t < 5; ++t) env.step(wobble(t).data());
+  for (int t = 0; t < 5; ++t) env.step(hinge_wobble(t).data());
 
   const auto obs = env.observation();
   std::vector<double> f(env.feature_names().size());

@@ -8,15 +8,10 @@
 #include "env/embedded_models.h"
 #include "env/registry.h"
 #include "env/walker.h"
+#include "env/test_support.h"
 
 namespace vaegail {
 namespace {
-
-std::string write_temp(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / name;
-  std::ofstream(path) << text;
-  return path.string();
-}
 
 const char* kPendulum = R"(<mujoco>
   <worldbody>

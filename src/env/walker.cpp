@@ -11,7 +11,7 @@ namespace vaegail {
 namespace {
 const char* const kJoints[] = {"right_hip", "right_knee", "right_ankle",
                                "left_hip",  "left_knee",  "left_ankle"};
-constexpr int kRootDofs = 3;  // rootx, rootz, rooty come first in qpos and qvel
+constexpr int kWalkerRootDofs = 3;  // rootx, rootz, rooty come first in qpos and qvel
 
 MujocoEnvOptions walker_env_options(const WalkerOptions& options) {
   MujocoEnvOptions o;
@@ -38,7 +38,7 @@ WalkerEnv::WalkerEnv(std::shared_ptr<const MujocoModel> model, WalkerOptions opt
   context_names_ = {"target_speed"};
   context_ = {0.0};
   const mjModel* m = model_->get();
-  if (m->nq != kRootDofs + 6 || m->nv != kRootDofs + 6 || m->nu != 6)
+  if (m->nq != kWalkerRootDofs + 6 || m->nv != kWalkerRootDofs + 6 || m->nu != 6)
     throw std::runtime_error(model_->source() + ": walker needs 9 joints and 6 actuators");
 }
 
@@ -61,7 +61,7 @@ void WalkerEnv::observe(float* out) const {
   out[0] = static_cast<float>(torso_height());
   out[1] = static_cast<float>(std::sin(pitch));
   out[2] = static_cast<float>(std::cos(pitch));
-  for (int j = 0; j < 6; ++j) out[3 + j] = static_cast<float>(d->qpos[kRootDofs + j]);
+  for (int j = 0; j < 6; ++j) out[3 + j] = static_cast<float>(d->qpos[kWalkerRootDofs + j]);
   for (int k = 0; k < 9; ++k) out[9 + k] = static_cast<float>(d->qvel[k]);
 }
 
@@ -96,7 +96,7 @@ double WalkerEnv::reward(const float* action) const {
 
 double WalkerEnv::posture_charge() const {
   double sq = 0;
-  for (int j = 0; j < 6; ++j) sq += data()->qpos[kRootDofs + j] * data()->qpos[kRootDofs + j];
+  for (int j = 0; j < 6; ++j) sq += data()->qpos[kWalkerRootDofs + j] * data()->qpos[kWalkerRootDofs + j];
   return walker_options_.posture_cost * sq / 6;
 }
 
@@ -107,7 +107,7 @@ void WalkerEnv::initialize_episode(Rng& rng) {
   mjData* d = mutable_data();
   d->qpos[2] = rng.uniform(-0.05, 0.05);
   for (int j = 0; j < 6; ++j) {
-    const int q = kRootDofs + j;
+    const int q = kWalkerRootDofs + j;
     const int joint = m->dof_jntid[q];
     d->qpos[q] = std::clamp(rng.uniform(-0.1, 0.1), m->jnt_range[2 * joint], m->jnt_range[2 * joint + 1]);
   }

@@ -37,12 +37,12 @@ DemoSet push_demos(const Env& env) {
 }
 
 torch::Tensor push_actions(const torch::Tensor& obs, const torch::Tensor&) { return torch::ones({obs.size(0), 1}); }
-torch::Tensor zero_actions(const torch::Tensor& obs, const torch::Tensor&) { return torch::zeros({obs.size(0), 1}); }
+torch::Tensor idle_actions(const torch::Tensor& obs, const torch::Tensor&) { return torch::zeros({obs.size(0), 1}); }
 
 TEST(BodyEval, TheDemonstratorItselfScoresZeroErrorAndAnotherPolicyDoesNot) {
   const auto env = pendulum();
   const auto demos = push_demos(env);
-  const auto result = evaluate_body(env, demos, {0, 1}, torch::zeros({2, 2}), {{"same", push_actions}, {"idle", zero_actions}});
+  const auto result = evaluate_body(env, demos, {0, 1}, torch::zeros({2, 2}), {{"same", push_actions}, {"idle", idle_actions}});
   EXPECT_EQ(result.features, env.feature_names());  // recorded by the same task: all of them
   ASSERT_EQ(result.rows.size(), 4u);
   const int tip_x = 1;  // com_speed, site:tip:x, ...

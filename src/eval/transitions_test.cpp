@@ -16,7 +16,7 @@ namespace {
 
 // 40-step episodes that run to their end whatever happens, so that a rollout always reaches
 // its blend.
-WalkerOptions short_episodes() {
+WalkerOptions unending_short_episodes() {
   WalkerOptions o;
   o.episode_length = 40;
   o.terminate_on_fall = false;
@@ -34,7 +34,7 @@ DemoSet random_demos(const Env& env) {
   return {"random.h5", header_for(env), record_episodes(env, r, random_policy(env, 7))};
 }
 
-torch::Tensor zero_actions(const torch::Tensor& obs, const torch::Tensor&) { return torch::zeros({obs.size(0), 6}); }
+torch::Tensor zero_walker_actions(const torch::Tensor& obs, const torch::Tensor&) { return torch::zeros({obs.size(0), 6}); }
 
 TEST(BlendSchedule, ConditionsOnAThenBlendsLinearlyToBAtMidEpisode) {
   const auto blend = mid_episode_blend(400);
@@ -65,7 +65,7 @@ TEST(BlendSchedule, ConditionsOnAThenBlendsLinearlyToBAtMidEpisode) {
 
 TEST(Transitions, APairWithIdenticalEmbeddingsIsPlainImitationBitForBit) {
   torch::manual_seed(0);
-  const WalkerEnv env(short_episodes());
+  const WalkerEnv env(unending_short_episodes());
   const auto demos = random_demos(env);
   vae::TrajectoryVae model(vae::testing::tiny_vae_config(env.obs_dim(), env.act_dim()));
   model->eval();
@@ -90,7 +90,7 @@ TEST(Transitions, APairWithIdenticalEmbeddingsIsPlainImitationBitForBit) {
 }
 
 TEST(Transitions, WalkerJudgeMeasuresTheSpeedAfterAStepAndMatchesWithinTheTolerance) {
-  const WalkerEnv env(short_episodes());
+  const WalkerEnv env(unending_short_episodes());
   const auto judge = walker_speed_judge(env.feature_names(), 0.25);
   EXPECT_EQ(judge.noun, "speed");
   Episode e;
@@ -133,7 +133,7 @@ TEST(TransitionPairs, AllOrderedPairsSamplesOfDifferentLabelsAndReferences) {
 }
 
 TEST(Transitions, RowsMeasureEachPairAndTheCsvHasItsColumns) {
-  const WalkerEnv env(short_episodes());
+  const WalkerEnv env(unending_short_episodes());
   const auto demos = random_demos(env);
   const auto pairs = with_references({{0, 1}, {1, 2}, {1, 3}});  // plus (1, 1), (2, 2), (3, 3)
   const auto z = torch::zeros({static_cast<int64_t>(pairs.size()), 2});
@@ -142,9 +142,9 @@ TEST(Transitions, RowsMeasureEachPairAndTheCsvHasItsColumns) {
   options.settle = 5;  // measured over steps 30..40
   const auto judge = walker_speed_judge(env.feature_names());
   const auto rows =
-      run_transitions(env, demos, pairs, z, z, {{"still", zero_actions}}, judge, options);
+      run_transitions(env, demos, pairs, z, z, {{"still", zero_walker_actions}}, judge, options);
   ASSERT_EQ(rows.size(), pairs.size());
-  const auto rollouts = roll_out_transitions(env, demos, pairs, z, z, zero_actions, mid_episode_blend(40, 4));
+  const auto rollouts = roll_out_transitions(env, demos, pairs, z, z, zero_walker_actions, mid_episode_blend(40, 4));
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
     EXPECT_EQ(r.pair, pairs[i]);
@@ -173,7 +173,7 @@ TEST(Transitions, RowsMeasureEachPairAndTheCsvHasItsColumns) {
   EXPECT_EQ(transitions_csv(rows).find("still,0,1,random,random,-1,1,"), transitions_csv({}).size());
 
   options.settle = 16;  // 20 + 4 + 16 leaves no step of 40 to measure
-  EXPECT_THROW(run_transitions(env, demos, pairs, z, z, {{"still", zero_actions}}, judge, options),
+  EXPECT_THROW(run_transitions(env, demos, pairs, z, z, {{"still", zero_walker_actions}}, judge, options),
                std::invalid_argument);
 }
 

@@ -76,8 +76,8 @@ class DistributedGailTest : public ::testing::Test {
 
 bool have_mpirun() { return world_supports_mpi() && std::system("command -v mpirun > /dev/null 2>&1") == 0; }
 
-// Every parameter and buffer of the run's agent and discriminator, by name.
-std::map<std::string, torch::Tensor> state_of(GailTrainer& t) {
+// A copy of every parameter and buffer of the run's agent and discriminator, by name.
+std::map<std::string, torch::Tensor> snapshot_of(GailTrainer& t) {
   std::map<std::string, torch::Tensor> out;
   for (const auto& item : t.agent().named_parameters()) out["agent." + item.key()] = item.value().clone();
   for (const auto& item : t.agent().named_buffers()) out["agent." + item.key()] = item.value().clone();
@@ -118,7 +118,7 @@ TEST_F(DistributedGailTest, TwoRanksTrainWhatOneProcessWithAllTheEnvironmentsTra
   ASSERT_EQ(ranks.iteration(), 1);
   // The 2-rank run moved the networks as far as the one-process run did, to float rounding.
   auto initial = trainer(dir / "initial", 0);
-  const auto start = state_of(initial), a = state_of(one), b = state_of(ranks);
+  const auto start = snapshot_of(initial), a = snapshot_of(one), b = snapshot_of(ranks);
   expect_close(a, b);
   int agent_moved = 0, disc_moved = 0;
   for (const auto& [name, value] : a)
@@ -140,7 +140,7 @@ TEST_F(DistributedGailTest, ARunResumesUnderAnotherRankCount) {
   whole.train();
   auto resumed = trainer(dir / "resumed", 2);
   ASSERT_EQ(resumed.iteration(), 2);
-  expect_close(state_of(whole), state_of(resumed));
+  expect_close(snapshot_of(whole), snapshot_of(resumed));
   EXPECT_EQ(lines_of(dir / "resumed" / "metrics.csv").size(), 3u);
 }
 

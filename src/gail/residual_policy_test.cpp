@@ -8,23 +8,23 @@
 namespace vaegail {
 namespace {
 
-constexpr int kObs = 4, kAct = 2, kLatent = 3;
+constexpr int kObsDim = 4, kActDim = 2, kLatentDim = 3;
 
 class ResidualPolicyTest : public ::testing::Test {
  protected:
   void SetUp() override {
     torch::manual_seed(5);
-    base = vae::TrajectoryVae(tiny_vae_config(kObs, kAct, kLatent));
+    base = vae::TrajectoryVae(tiny_vae_config(kObsDim, kActDim, kLatentDim));
     // Non-trivial statistics on both sides, so that an error in (de)normalising shows.
     base->set_normalization(torch::tensor({1.f, -2.f, 0.5f, 3.f}), torch::tensor({2.f, 0.5f, 1.f, 4.f}),
                             torch::tensor({0.3f, -0.1f}), torch::tensor({0.7f, 2.f}));
-    normalizer = std::make_shared<ObsNormalizer>(kObs);
-    const auto sample = [](int64_t n) { return torch::randn({n, kObs}) * torch::tensor({3.f, 0.2f, 1.f, 5.f}) + 2.0; };
+    normalizer = std::make_shared<ObsNormalizer>(kObsDim);
+    const auto sample = [](int64_t n) { return torch::randn({n, kObsDim}) * torch::tensor({3.f, 0.2f, 1.f, 5.f}) + 2.0; };
     normalizer->update(sample(200));
     normalizer->set_frozen(true);
     policy = std::make_shared<ResidualPolicy>(base, normalizer);
     raw = sample(16);  // within the normaliser's clip, where its inverse is exact
-    z = torch::randn({16, kLatent});
+    z = torch::randn({16, kLatentDim});
     input = torch::cat({normalizer->normalize(raw), z}, -1);
   }
 
@@ -45,9 +45,9 @@ TEST_F(ResidualPolicyTest, IsTheVaeMeanWhenTheResidualOutputIsZero) {
   const auto dist = policy->distribution(input);
   torch::NoGradGuard no_grad;
   EXPECT_TRUE(torch::allclose(dist.mean, base->action_mean(raw, z), 1e-4, 1e-5));
-  EXPECT_TRUE(torch::allclose(dist.log_std, torch::full({16, kAct}, -1.0)));
-  EXPECT_EQ(policy->input_dim(), kObs + kLatent);
-  EXPECT_EQ(policy->act_dim(), kAct);
+  EXPECT_TRUE(torch::allclose(dist.log_std, torch::full({16, kActDim}, -1.0)));
+  EXPECT_EQ(policy->input_dim(), kObsDim + kLatentDim);
+  EXPECT_EQ(policy->act_dim(), kActDim);
 }
 
 TEST_F(ResidualPolicyTest, StartsCloseToTheVaeMean) {
@@ -58,7 +58,7 @@ TEST_F(ResidualPolicyTest, StartsCloseToTheVaeMean) {
 }
 
 TEST_F(ResidualPolicyTest, GradientsStopAtTheVae) {
-  policy->distribution(input).log_prob(torch::randn({16, kAct})).sum().backward();
+  policy->distribution(input).log_prob(torch::randn({16, kActDim})).sum().backward();
   for (const auto& p : base->parameters()) {
     EXPECT_FALSE(p.requires_grad());
     EXPECT_FALSE(p.grad().defined());
@@ -78,7 +78,7 @@ TEST_F(ResidualPolicyTest, TrpoMovesTheResidualAndLeavesTheVaeAlone) {
   for (const auto& p : base->parameters()) before.push_back(p.clone());
   const auto residual_before = parameter("residual.layer2.weight").clone();
   CriticOptions c;
-  c.input_dim = kObs + kLatent;
+  c.input_dim = kObsDim + kLatentDim;
   c.hidden = {8};
   Trpo trpo(policy, std::make_shared<Critic>(c));
   torch::Tensor actions, old_log_probs;

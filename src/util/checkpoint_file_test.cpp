@@ -10,6 +10,7 @@
 
 #include "util/atomic_file.h"
 #include "util/test_child.h"
+#include "util/test_error.h"
 
 namespace vaegail {
 namespace {
@@ -40,15 +41,6 @@ struct FakeLoader {
     };
   }
 };
-
-std::string error_of(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(CheckpointFile, ThePreviousCheckpointLiesBesideTheLatest) {
   EXPECT_EQ(previous_checkpoint_for("run/checkpoints/latest.pt"), "run/checkpoints/previous.pt");

@@ -2,19 +2,10 @@
 
 #include <gtest/gtest.h>
 
-#include <functional>
+#include "util/test_error.h"
 
 namespace vaegail {
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(CsvTable, ReadsNumbersAndStringsByColumnName) {
   const auto t = CsvTable::parse("episode,expert_id,speed\r\n0,walker-a,1.5\n\n1,walker-b,-2e-1\n", "e.csv");

@@ -23,4 +23,15 @@ std::string one_line_error_of(F call) {
   return {};
 }
 
+// what() of the exception `call` throws, or "" when it throws none (for tests where both happen).
+template <class F>
+std::string error_of(F call) {
+  try {
+    call();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace vaegail
