@@ -13,7 +13,7 @@ int index_of(const std::vector<std::string>& names, const std::string& name) {
   return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
 }
 
-std::string number(double v) { return fmt::format("{:.4g}", v); }
+std::string short_number(double v) { return fmt::format("{:.4g}", v); }
 
 }  // namespace
 
@@ -74,7 +74,7 @@ std::string body_rows_csv(const BodyEval& eval) {
   for (const auto& r : eval.rows) {
     csv += r.policy + "," + std::to_string(r.episode) + "," + r.expert_id + "," + (r.fell ? "1" : "0") + "," +
            std::to_string(r.steps) + "," + std::to_string(r.demo_steps);
-    for (double e : r.feature_errors) csv += "," + number(e);
+    for (double e : r.feature_errors) csv += "," + short_number(e);
     csv += "\n";
   }
   return csv;
@@ -105,9 +105,9 @@ std::string body_summary_table(const BodyEval& eval) {
       for (size_t f = 0; f < errors.size(); ++f) errors[f] += r->feature_errors[f];
     }
     const double n = static_cast<double>(rows.size());
-    table += "| " + policy + " | " + std::to_string(rows.size()) + " | " + number(falls / n) + " | " +
-             number(steps / n) + " (" + number(demo_steps / n) + ") |";
-    for (double e : errors) table += " " + number(e / n) + " |";
+    table += "| " + policy + " | " + std::to_string(rows.size()) + " | " + short_number(falls / n) + " | " +
+             short_number(steps / n) + " (" + short_number(demo_steps / n) + ") |";
+    for (double e : errors) table += " " + short_number(e / n) + " |";
     table += "\n";
   }
   return table;

@@ -12,7 +12,7 @@ namespace vaegail::eval {
 
 namespace {
 
-std::string number(double v) { return fmt::format("{:.9g}", v); }
+std::string exact_number(double v) { return fmt::format("{:.9g}", v); }
 
 std::string header(size_t latent) {
   std::string h = "episode,expert_id,context,achieved_speed,held_out";
@@ -37,10 +37,10 @@ std::string embedding_csv(const std::vector<EmbeddingRow>& rows) {
       throw std::invalid_argument("embedding_csv: rows differ in latent size");
     if (r.expert_id.find_first_of(",\n") != std::string::npos)
       throw std::invalid_argument("embedding_csv: expert id '" + r.expert_id + "' holds a comma or newline");
-    out += std::to_string(r.episode) + "," + r.expert_id + "," + number(r.context) + "," +
-           number(r.achieved_speed) + "," + (r.held_out ? "1" : "0");
-    for (double v : r.mu) out += "," + number(v);
-    for (double v : r.sigma) out += "," + number(v);
+    out += std::to_string(r.episode) + "," + r.expert_id + "," + exact_number(r.context) + "," +
+           exact_number(r.achieved_speed) + "," + (r.held_out ? "1" : "0");
+    for (double v : r.mu) out += "," + exact_number(v);
+    for (double v : r.sigma) out += "," + exact_number(v);
     out += "\n";
   }
   return out;
@@ -354,7 +354,7 @@ namespace {
 // context-conditioned expert.
 std::string expert_line(const std::string& id, const ExpertVote& e, bool linear) {
   std::string targets;
-  for (double c : e.contexts) targets += (targets.empty() ? "" : "/") + number(c);
+  for (double c : e.contexts) targets += (targets.empty() ? "" : "/") + exact_number(c);
   std::string line = "  expert " + id + (e.contexts.size() > 1 ? " (targets " : " (target ") + targets +
                      "): " + std::to_string(e.correct) + " / " + std::to_string(e.total);
   if (linear) return line + fmt::format("; mean read-out {:+.2f}\n", e.readout_sum / e.total);
