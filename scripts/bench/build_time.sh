@@ -4,7 +4,7 @@
 # stage into a scratch folder, with ccache off, and the wall-clock and CPU (user + system) seconds
 # it took. docs/benchmarks.md, "Build time". Nothing else should run meanwhile: anything that does
 # shares the cores with the builds.
-# Usage: scripts/bench/build_time.sh [JOBS]   (default: the number of cores; about 40 minutes on 2)
+# Usage: scripts/bench/build_time.sh [JOBS]   (default: the number of cores; about 31 minutes on 2)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 jobs=${1:-$(nproc)}
