@@ -75,6 +75,31 @@ StepOutcome MujocoEnv::step(const float* action) {
   for (int a = 0; a < m->nu; ++a)
     d->ctrl[a] = std::clamp(static_cast<double>(action[a]), act_spec_.low[a], act_spec_.high[a]);
   for (int k = 0; k < options_.frame_skip; ++k) mj_step(m, d);
+  return finish_step(action);
+}
+
+StepOutcome MujocoEnv::step_controlled(PhysicsStepController& controller, float* mean_action) {
+  const mjModel* m = model_->get();
+  mjData* d = data_.get();
+  if (m->opt.integrator == mjINT_RK4)
+    throw std::invalid_argument(model_->source() + ": a controller acting at the physics step needs the Euler or implicit integrator, not RK4");
+  ctrl_sum_.assign(m->nu, 0.0);
+  for (int k = 0; k < options_.frame_skip; ++k) {
+    mj_step1(m, d);
+    controller.control(m, d);
+    for (int a = 0; a < m->nu; ++a) {
+      d->ctrl[a] = std::clamp(d->ctrl[a], act_spec_.low[a], act_spec_.high[a]);
+      ctrl_sum_[a] += d->ctrl[a];
+    }
+    mj_step2(m, d);
+  }
+  for (int a = 0; a < m->nu; ++a) mean_action[a] = static_cast<float>(ctrl_sum_[a] / options_.frame_skip);
+  return finish_step(mean_action);
+}
+
+StepOutcome MujocoEnv::finish_step(const float* action) {
+  const mjModel* m = model_->get();
+  mjData* d = data_.get();
   // mj_step leaves positions and velocities of the new state but kinematic quantities of the
   // old one; refresh those that features and rewards read (cheaper than a full mj_forward).
   mj_kinematics(m, d);

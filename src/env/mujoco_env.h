@@ -14,6 +14,19 @@
 
 namespace vaegail {
 
+// A scripted controller that acts at every physics step inside the environment's control step: a
+// demonstrator whose feedback needs the physics rate (the humanoid's gait controller falls when
+// its torques are held for a 0.03 s control step). Any MJCF body's controller can implement it.
+class PhysicsStepController {
+ public:
+  virtual ~PhysicsStepController() = default;
+  // Called before every physics step, after mj_step1: positions, velocities, contacts and the
+  // quantities derived from them (xpos, cvel, subtree_com, qfrc_bias) are those of the state the
+  // step starts from. Writes data->ctrl (the environment clips it to the action box as applied);
+  // may also set data->xfrc_applied (an external push).
+  virtual void control(const mjModel* model, mjData* data) = 0;
+};
+
 struct MujocoEnvOptions {
   std::string id = "mjcf";
   int frame_skip = 1;          // physics steps per control step
@@ -36,6 +49,13 @@ class MujocoEnv : public Env {
   const std::vector<double>& context() const override { return context_; }
   void reset(std::uint64_t seed) override;
   StepOutcome step(const float* action) override;
+  // One control step with `controller` setting ctrl before each of its physics steps. Writes the
+  // mean of the ctrl applied over the step (clipped to the action box, float[act_dim]) to
+  // mean_action: the action a demonstration records, so that its files keep the shapes of
+  // step()'s (an observation per control step, one action per step). Reward and termination are
+  // step()'s, of mean_action. Throws for a model on the RK4 integrator, which MuJoCo cannot split
+  // around a control call (mj_step1/mj_step2 then integrate by Euler).
+  StepOutcome step_controlled(PhysicsStepController& controller, float* mean_action);
   void observe(float* out) const override;
   void features(double* out) const override;
   int steps_taken() const override { return steps_; }
@@ -67,8 +87,13 @@ class MujocoEnv : public Env {
   MujocoEnvOptions options_;
 
  private:
+  // After the physics steps of a control step: the derived quantities of the new state, the
+  // step count, reward and termination.
+  StepOutcome finish_step(const float* action);
+
   MjDataPtr data_;
   int steps_ = 0;
+  std::vector<double> ctrl_sum_;  // step_controlled's running sum of applied ctrl
 };
 
 }  // namespace vaegail

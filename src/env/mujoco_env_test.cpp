@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "env/embedded_models.h"
+#include "env/humanoid.h"
 #include "env/registry.h"
 #include "env/walker.h"
 #include "env/test_support.h"
@@ -94,6 +96,85 @@ TEST(MujocoEnv, SetStateRejectsAnotherModelNamingIt) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("walker.xml: the simulation's model has nq/nv/na/nu 1/1/0/1"),
               std::string::npos) << e.what();
+  }
+}
+
+
+// Writes the same ctrl before every physics step: what step() does with a held action.
+class HeldCtrlController : public PhysicsStepController {
+ public:
+  explicit HeldCtrlController(std::vector<double> ctrl) : ctrl_(std::move(ctrl)) {}
+  void control(const mjModel* m, mjData* d) override { std::copy_n(ctrl_.begin(), m->nu, d->ctrl); }
+
+ private:
+  std::vector<double> ctrl_;
+};
+
+// Writes `first` and `second` on alternate physics steps.
+class AlternatingCtrlController : public PhysicsStepController {
+ public:
+  AlternatingCtrlController(double first, double second) : values_{first, second} {}
+  void control(const mjModel* m, mjData* d) override {
+    for (int a = 0; a < m->nu; ++a) d->ctrl[a] = values_[calls_ % 2];
+    ++calls_;
+  }
+
+ private:
+  double values_[2];
+  int calls_ = 0;
+};
+
+std::shared_ptr<Env> pendulum_env(int frame_skip) {
+  EnvRequest request;
+  request.task = write_temp("vaegail_pendulum.xml", kPendulum);
+  request.frame_skip = frame_skip;
+  return make_env(request);
+}
+
+TEST(MujocoEnvStepControlled, AConstantControllerRecordsItsConstantAsTheMeanAction) {
+  auto env = pendulum_env(5);
+  env->reset(1);
+  HeldCtrlController held({1.25});
+  float mean = 0;
+  dynamic_cast<MujocoEnv&>(*env).step_controlled(held, &mean);
+  EXPECT_FLOAT_EQ(mean, 1.25f);
+}
+
+TEST(MujocoEnvStepControlled, AlternatingValuesRecordTheirMeanAndOutOfRangeCtrlIsClippedAsApplied) {
+  auto env = pendulum_env(4);  // an even count: two of each value
+  auto& mj = dynamic_cast<MujocoEnv&>(*env);
+  env->reset(1);
+  AlternatingCtrlController alternating(1.5, -0.5);
+  float mean = 0;
+  mj.step_controlled(alternating, &mean);
+  EXPECT_FLOAT_EQ(mean, 0.5f);
+  AlternatingCtrlController beyond(5.0, 1.0);  // ctrlrange is [-2, 2]: 5 is applied as 2
+  mj.step_controlled(beyond, &mean);
+  EXPECT_FLOAT_EQ(mean, 1.5f);
+  EXPECT_DOUBLE_EQ(mj.data()->ctrl[0], 1.0);
+}
+
+TEST(MujocoEnvStepControlled, AConstantControllerStepsTheHumanoidExactlyAsStepWithTheHeldAction) {
+  HumanoidEnv stepped, controlled;
+  stepped.reset(7);
+  controlled.reset(7);
+  std::vector<float> action(stepped.act_dim());
+  for (size_t a = 0; a < action.size(); ++a) action[a] = 0.3f * std::sin(0.7f * a);  // a pose-holding guess, not 0
+  HeldCtrlController held(std::vector<double>(action.begin(), action.end()));
+  std::vector<float> mean(action.size());
+  std::vector<double> a(stepped.feature_names().size()), b(a.size());
+  for (int t = 0; t < 40; ++t) {
+    const StepOutcome x = stepped.step(action.data());
+    const StepOutcome y = controlled.step_controlled(held, mean.data());
+    ASSERT_EQ(mean, action) << t;
+    ASSERT_EQ(x.reward, y.reward) << t;
+    ASSERT_EQ(x.terminated, y.terminated) << t;
+    ASSERT_EQ(x.truncated, y.truncated) << t;
+    stepped.features(a.data());
+    controlled.features(b.data());
+    ASSERT_EQ(a, b) << t;
+    ASSERT_EQ(stepped.observation(), controlled.observation()) << t;
+    if (x.done()) break;
   }
 }
 
