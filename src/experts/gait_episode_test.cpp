@@ -1,0 +1,66 @@
+// The gait controller on the humanoid, whole episodes through the environment's physics-step
+// hook: the walk stands, walks at the commanded speed and heading, and survives pushes.
+#include "experts/gait_episode.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace vaegail {
+namespace {
+
+TEST(GaitEpisode, TheDefaultWalkStaysUpTenSecondsFromPerturbedStartsAboveOneMetrePerSecond) {
+  HumanoidEnv env;
+  for (std::uint64_t seed : {11, 12}) {
+    GaitEpisodeOptions o;
+    o.seed = seed;
+    const GaitEpisodeResult r = run_gait_episode(env, GaitParameters{}, o);
+    EXPECT_FALSE(r.fallen) << seed;
+    EXPECT_EQ(r.control_steps, env.episode_length());
+    EXPECT_NEAR(r.time_up, 10.02, 1e-9);
+    EXPECT_GT(r.speed, 1.0);
+    EXPECT_GT(r.distance, 10.0);
+    EXPECT_LT(std::abs(r.lateral_drift), 0.5);
+    EXPECT_LT(r.heading_error, 0.1);
+    EXPECT_GT(r.step_length, 0.35);
+    EXPECT_NEAR(r.cadence, 60.0 * r.steps / r.time_up, 0.1 * r.cadence);
+    EXPECT_NEAR(r.pelvis_height, r.style[kRootHeight], 1e-12);
+    EXPECT_NEAR(r.signature[0], 1.2, 0.2);  // forward_speed over every step, the start included
+  }
+}
+
+TEST(GaitEpisode, TheWalkSurvivesA200NewtonPushOnThePelvis) {
+  HumanoidEnv env;
+  for (std::uint64_t seed : {21, 22}) {
+    GaitEpisodeOptions o;
+    o.seed = seed;
+    const GaitEpisodeResult calm = run_gait_episode(env, GaitParameters{}, o);
+    o.pushes = 1;  // 200 N for 0.1 s, at a time in [2, 8] s and a direction drawn from the seed
+    const GaitEpisodeResult pushed = run_gait_episode(env, GaitParameters{}, o);
+    EXPECT_FALSE(pushed.fallen) << seed;
+    EXPECT_GT(std::abs(pushed.distance - calm.distance) + std::abs(pushed.lateral_drift - calm.lateral_drift), 0.02);
+  }
+}
+
+TEST(GaitEpisode, ASlowerCommandedSpeedWalksSlower) {
+  HumanoidEnv env;
+  GaitParameters slow;
+  slow.speed = 0.8;
+  const GaitEpisodeResult r = run_gait_episode(env, slow, {});
+  EXPECT_FALSE(r.fallen);
+  EXPECT_NEAR(r.speed, 0.8, 0.15);
+}
+
+TEST(GaitEpisode, ACommandedHeadingTurnsTheWalk) {
+  HumanoidEnv env;
+  GaitParameters turned;
+  turned.heading = 0.4;
+  const GaitEpisodeResult r = run_gait_episode(env, turned, {});
+  EXPECT_FALSE(r.fallen);
+  EXPECT_LT(r.final_heading_error, 0.1);
+  EXPECT_NEAR(env.heading(), 0.4, 0.1);
+  EXPECT_GT(r.distance, 8.0);  // along the new heading
+}
+
+}  // namespace
+}  // namespace vaegail
