@@ -10,12 +10,18 @@
 namespace vaegail {
 namespace {
 
+// The default walk from reset seed `seed`, with `pushes` random pushes.
+GaitEpisodeResult default_walk(HumanoidEnv& env, std::uint64_t seed, int pushes) {
+  GaitEpisodeOptions o;
+  o.seed = seed;
+  o.pushes = pushes;  // 200 N for 0.1 s each, at a time in [2, 8] s and a direction drawn from the seed
+  return run_gait_episode(env, GaitParameters{}, o);
+}
+
 TEST(GaitEpisode, TheDefaultWalkStaysUpTenSecondsFromPerturbedStartsAboveOneMetrePerSecond) {
   HumanoidEnv env;
   for (std::uint64_t seed : {11, 12}) {
-    GaitEpisodeOptions o;
-    o.seed = seed;
-    const GaitEpisodeResult r = run_gait_episode(env, GaitParameters{}, o);
+    const GaitEpisodeResult r = default_walk(env, seed, 0);
     EXPECT_FALSE(r.fallen) << seed;
     EXPECT_EQ(r.control_steps, env.episode_length());
     EXPECT_NEAR(r.time_up, 10.02, 1e-9);
@@ -33,34 +39,22 @@ TEST(GaitEpisode, TheDefaultWalkStaysUpTenSecondsFromPerturbedStartsAboveOneMetr
 TEST(GaitEpisode, TheWalkSurvivesA200NewtonPushOnThePelvis) {
   HumanoidEnv env;
   for (std::uint64_t seed : {21, 22}) {
-    GaitEpisodeOptions o;
-    o.seed = seed;
-    const GaitEpisodeResult calm = run_gait_episode(env, GaitParameters{}, o);
-    o.pushes = 1;  // 200 N for 0.1 s, at a time in [2, 8] s and a direction drawn from the seed
-    const GaitEpisodeResult pushed = run_gait_episode(env, GaitParameters{}, o);
+    const GaitEpisodeResult calm = default_walk(env, seed, 0), pushed = default_walk(env, seed, 1);
     EXPECT_FALSE(pushed.fallen) << seed;
     EXPECT_GT(std::abs(pushed.distance - calm.distance) + std::abs(pushed.lateral_drift - calm.lateral_drift), 0.02);
   }
 }
 
-TEST(GaitEpisode, ASlowerCommandedSpeedWalksSlower) {
+TEST(GaitEpisode, TheCommandsSetTheSpeedAndTheHeading) {
   HumanoidEnv env;
-  GaitParameters slow;
-  slow.speed = 0.8;
-  const GaitEpisodeResult r = run_gait_episode(env, slow, {});
-  EXPECT_FALSE(r.fallen);
-  EXPECT_NEAR(r.speed, 0.8, 0.15);
-}
-
-TEST(GaitEpisode, ACommandedHeadingTurnsTheWalk) {
-  HumanoidEnv env;
-  GaitParameters turned;
-  turned.heading = 0.4;
-  const GaitEpisodeResult r = run_gait_episode(env, turned, {});
-  EXPECT_FALSE(r.fallen);
-  EXPECT_LT(r.final_heading_error, 0.1);
+  const GaitEpisodeResult slow = run_gait_episode(env, gait_parameters_from_json({{"speed", 0.8}}, "slow"), {});
+  EXPECT_FALSE(slow.fallen);
+  EXPECT_NEAR(slow.speed, 0.8, 0.15);
+  const GaitEpisodeResult turned = run_gait_episode(env, gait_parameters_from_json({{"heading", 0.4}}, "turned"), {});
+  EXPECT_FALSE(turned.fallen);
+  EXPECT_LT(turned.final_heading_error, 0.1);
   EXPECT_NEAR(env.heading(), 0.4, 0.1);
-  EXPECT_GT(r.distance, 8.0);  // along the new heading
+  EXPECT_GT(turned.distance, 8.0);  // along the new heading
 }
 
 TEST(GaitEval, AStyleIsWalkedFromEachStartWithAndWithoutPushesAndItsMeansReported) {

@@ -1,6 +1,7 @@
 #include "experts/gait_skeleton.h"
 
 #include <stdexcept>
+#include <utility>
 
 namespace vaegail {
 
@@ -15,35 +16,27 @@ int named(const mjModel* m, const std::string& model_name, mjtObj type, const st
 GaitSkeleton::GaitSkeleton(const mjModel* m, const std::string& name) : model(m), model_name(name) {
   root = named(m, name, mjOBJ_BODY, "root", "body");
   floor_geom = named(m, name, mjOBJ_GEOM, "floor", "geom");
+  // Each side's joints, by the CMU names without their l/r prefix.
+  const std::pair<int GaitLeg::*, const char*> leg_joints[] = {
+      {&GaitLeg::hip_rz, "femurrz"}, {&GaitLeg::hip_ry, "femurry"},  {&GaitLeg::hip_rx, "femurrx"},
+      {&GaitLeg::knee, "tibiarx"},   {&GaitLeg::ankle_rz, "footrz"}, {&GaitLeg::ankle_rx, "footrx"},
+      {&GaitLeg::toe, "toesrx"}};
+  const std::pair<int GaitArm::*, const char*> arm_joints[] = {
+      {&GaitArm::clavicle_rz, "claviclerz"}, {&GaitArm::clavicle_ry, "claviclery"}, {&GaitArm::shoulder_rz, "humerusrz"},
+      {&GaitArm::shoulder_ry, "humerusry"},  {&GaitArm::shoulder_rx, "humerusrx"},  {&GaitArm::elbow, "radiusrx"}};
+  const char* const distal[6] = {"wristry", "handrz", "handrx", "fingersrx", "thumbrz", "thumbrx"};
   const char* const side[2] = {"l", "r"};
   for (int s = 0; s < 2; ++s) {
-    auto body = [&](const char* part) { return named(m, name, mjOBJ_BODY, side[s] + std::string(part), "body"); };
-    auto hinge = [&](const char* part) { return joint(side[s] + std::string(part)); };
+    const auto sided = [&](const char* part) { return side[s] + std::string(part); };
     GaitLeg& leg = legs[s];
-    leg.femur = body("femur");
-    leg.tibia = body("tibia");
-    leg.foot = body("foot");
-    leg.hip_rz = hinge("femurrz");
-    leg.hip_ry = hinge("femurry");
-    leg.hip_rx = hinge("femurrx");
-    leg.knee = hinge("tibiarx");
-    leg.ankle_rz = hinge("footrz");
-    leg.ankle_rx = hinge("footrx");
-    leg.toe = hinge("toesrx");
-    leg.foot_geom = named(m, name, mjOBJ_GEOM, side[s] + std::string("foot"), "geom");
-    leg.toes_geom = named(m, name, mjOBJ_GEOM, side[s] + std::string("toes"), "geom");
-  }
-  for (int s = 0; s < 2; ++s) {
-    auto hinge = [&](const char* part) { return joint(side[s] + std::string(part)); };
-    GaitArm& arm = arms[s];
-    arm.clavicle_rz = hinge("claviclerz");
-    arm.clavicle_ry = hinge("claviclery");
-    arm.shoulder_rz = hinge("humerusrz");
-    arm.shoulder_ry = hinge("humerusry");
-    arm.shoulder_rx = hinge("humerusrx");
-    arm.elbow = hinge("radiusrx");
-    const char* const distal[6] = {"wristry", "handrz", "handrx", "fingersrx", "thumbrz", "thumbrx"};
-    for (int k = 0; k < 6; ++k) arm.distal[k] = hinge(distal[k]);
+    leg.femur = named(m, name, mjOBJ_BODY, sided("femur"), "body");
+    leg.tibia = named(m, name, mjOBJ_BODY, sided("tibia"), "body");
+    leg.foot = named(m, name, mjOBJ_BODY, sided("foot"), "body");
+    leg.foot_geom = named(m, name, mjOBJ_GEOM, sided("foot"), "geom");
+    leg.toes_geom = named(m, name, mjOBJ_GEOM, sided("toes"), "geom");
+    for (const auto& [member, part] : leg_joints) leg.*member = joint(sided(part));
+    for (const auto& [member, part] : arm_joints) arms[s].*member = joint(sided(part));
+    for (int k = 0; k < 6; ++k) arms[s].distal[k] = joint(sided(distal[k]));
   }
   const char* const back_segments[3] = {"lowerback", "upperback", "thorax"};
   for (int k = 0; k < 3; ++k)
