@@ -1,11 +1,13 @@
 #include "experts/balance_feedback.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vaegail {
 
 double commanded_heading(const GaitParameters& p, double time) {
-  return p.heading + p.heading_wander * std::sin(2 * M_PI * time / p.wander_period);
+  const double turned = std::copysign(std::min(std::abs(p.heading), p.turn_rate * time), p.heading);
+  return turned + p.heading_wander * std::sin(2 * M_PI * time / p.wander_period);
 }
 
 Vec2 to_heading_frame(const Vec2& w, double heading) {

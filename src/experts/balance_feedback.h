@@ -16,7 +16,8 @@ namespace vaegail {
 
 using Vec2 = std::array<double, 2>;
 
-// The commanded heading (rad) at `time` s since the reset: heading plus its sinusoidal wander.
+// The commanded heading (rad) at `time` s since the reset: turning from 0 (the reset faces world
+// x) towards `heading` at turn_rate, plus the sinusoidal wander.
 double commanded_heading(const GaitParameters& p, double time);
 
 // Horizontal world vector turned into the frame of `heading` (x along it), and back.

@@ -115,12 +115,13 @@ TEST(GaitBalanceFeedback, FootPlacementByHand) {
   EXPECT_NEAR(foot_placement(p, {1.0, 2.0}, {0.9, 2.1}, {-0.2, 1.0}, M_PI / 2, -1.0)[0], 1.0 - 0.08, 1e-12);
 }
 
-TEST(GaitBalanceFeedback, CommandedHeadingWandersAboutTheHeading) {
+TEST(GaitBalanceFeedback, CommandedHeadingTurnsAtTheTurnRateAndWandersAboutTheHeading) {
   GaitParameters p;
-  p.heading = 0.2, p.heading_wander = 0.3, p.wander_period = 4.0;
-  EXPECT_NEAR(commanded_heading(p, 0.0), 0.2, 1e-12);
-  EXPECT_NEAR(commanded_heading(p, 1.0), 0.5, 1e-12);
-  EXPECT_NEAR(commanded_heading(p, 3.0), -0.1, 1e-12);
+  p.heading = -0.2, p.turn_rate = 0.1, p.heading_wander = 0.3, p.wander_period = 4.0;
+  EXPECT_NEAR(commanded_heading(p, 0.0), 0.0, 1e-12);         // the reset's facing
+  EXPECT_NEAR(commanded_heading(p, 1.0), -0.1 + 0.3, 1e-12);  // halfway through the turn, the wander at its peak
+  EXPECT_NEAR(commanded_heading(p, 3.0), -0.2 - 0.3, 1e-12);  // turned
+  EXPECT_NEAR(commanded_heading(p, 4.0), -0.2, 1e-12);
 }
 
 TEST(GaitSwingIk, TheLegItSolvesForReachesTheTargetWithTheKneeForward) {

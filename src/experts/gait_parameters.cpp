@@ -18,7 +18,7 @@ GaitParameters gait_parameters_from_json(const nlohmann::json& parameters, const
     if (!ok) throw std::invalid_argument(where + ": gait parameters need " + what);
   };
   require(p.step_min_time > 0 && p.step_max_time > 0, "step_min_time and step_max_time > 0");
-  require(p.wander_period > 0, "wander_period > 0");
+  require(p.wander_period > 0 && p.turn_rate > 0, "wander_period and turn_rate > 0");
   require(p.swing_descent_phase > 0 && p.swing_descent_phase <= 1, "swing_descent_phase in (0, 1]");
   require(p.swing_reach_phase > 0 && p.swing_reach_phase <= 1, "swing_reach_phase in (0, 1]");
   require(p.back_roll_filter > 0 && p.support_ramp > 0, "back_roll_filter and support_ramp > 0");

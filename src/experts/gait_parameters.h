@@ -25,6 +25,8 @@ struct GaitParameters {
   // ---- commands
   double speed = 1.25;          // m/s: forward centre-of-mass speed the sagittal placement aims for
   double heading = 0.0;         // rad: direction of travel, from world x towards world y
+  double turn_rate = 0.5;       // rad/s: the commanded heading turns from the reset's facing (world x) to
+                                //   `heading` at this rate (a sudden turn trips the walk)
   double heading_wander = 0.0;  // rad: amplitude of a sinusoidal wander of the heading ("drunk")
   double wander_period = 4.0;   // s: period of that wander
   double sway_speed = 0.0;      // m/s: lateral COM speed towards the new stance foot that each placement aims for;
@@ -87,7 +89,7 @@ struct GaitParameters {
 };
 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(GaitParameters, step_min_time, step_max_time, speed, heading,
-                                                heading_wander, wander_period, sway_speed, place_dx, place_vx,
+                                                turn_rate, heading_wander, wander_period, sway_speed, place_dx, place_vx,
                                                 place_offset_x, place_dy, place_vy, step_width, swing_height,
                                                 swing_descent_phase, swing_reach_phase, swing_end_height, toe_out,
                                                 swing_ankle, swing_ankle_late, stance_knee, stance_ankle, hip_support,
@@ -99,7 +101,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(GaitParameters, step_min_time, s
 
 // Parameters from JSON, keys left out taking the defaults. Throws (one line naming `where` and
 // the key) on a key that is not a parameter, a value that is not a number, or numbers that cannot
-// run a step (step times or wander_period not > 0, swing phases not in (0, 1]).
+// run a step (step times, turn_rate or wander_period not > 0, swing phases not in (0, 1]).
 GaitParameters gait_parameters_from_json(const nlohmann::json& parameters, const std::string& where);
 
 // A style file: its "parameters" object (other top-level keys, e.g. a tuner's record, are left
