@@ -19,8 +19,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-// The ceiling: mj_step on one mjData with fresh random controls each control step and a reset
-// at every episode's end, as the environments see it, but none of their bookkeeping.
+}  // namespace
+
 double raw_physics_steps_per_s(const MujocoEnv& env, double seconds) {
   const mjModel* m = env.model();
   MjDataPtr data(mj_makeData(m));
@@ -38,6 +38,8 @@ double raw_physics_steps_per_s(const MujocoEnv& env, double seconds) {
   } while (since(start) < seconds);
   return steps / since(start);
 }
+
+namespace {
 
 // raw_physics_steps_per_s on `cores` threads at the same time, summed.
 double all_core_physics_steps_per_s(const MujocoEnv& env, double seconds, int cores) {

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "env/mujoco_env.h"
 #include "env/registry.h"
 
 namespace vaegail {
@@ -28,6 +29,11 @@ struct PhysicsBenchResult {
   double policy_fraction = 0;          // share of the loop's time spent in the policy
   double ratio() const { return vec_control_steps_per_s / raw_control_steps_per_s; }
 };
+
+// The ceiling: mj_step on one mjData of env's model with fresh random controls each control step
+// and a reset at every episode's end, as the environments see it, but none of their bookkeeping;
+// physics steps per second over `seconds` on the calling thread.
+double raw_physics_steps_per_s(const MujocoEnv& env, double seconds);
 
 PhysicsBenchResult run_physics_bench(const PhysicsBenchOptions& options);
 std::string format_physics_bench(const PhysicsBenchOptions& options, const PhysicsBenchResult& result);
