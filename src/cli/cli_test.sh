@@ -181,6 +181,16 @@ expect_error "demos styles reads humanoid demonstrations" "" -- demos styles --d
   fail "experts plan: $(cat "$tmp/stdout")"
 expect_error "--styles: 8 is not a style index (0 to 7)" "" -- experts plan --styles 8
 
+# ---- the humanoid's gait controllers: experts eval --styles -----------------------------
+"$v" experts eval --task humanoid --styles "$root/configs/humanoid_styles/train/walk.json" --episodes 1 \
+  --replay --raw-seconds 0.2 --csv "$tmp/gait.csv" --json "$tmp/gait.json" > "$tmp/stdout" 2>&1 &&
+  grep -q "^walk  *1/1  *1/1 " "$tmp/stdout" && grep -q "ratio" "$tmp/stdout" && [ "$(wc -l < "$tmp/gait.csv")" -eq 2 ] &&
+  grep -q '"pushed_falls": 0' "$tmp/gait.json" || fail "experts eval --styles: $(cat "$tmp/stdout")"
+echo '{"parameters": {"sped": 1}}' > "$tmp/typo.json"
+expect_error "typo.json: 'sped' is not a gait parameter" "" -- experts eval --styles "$tmp/typo.json"
+expect_error "gait controllers drive the humanoid, not --task walker" "" -- \
+  experts eval --task walker --styles "$root/configs/humanoid_styles/train/walk.json"
+
 # ---- the reproduce scripts call commands and options that exist ------------------------
 # Every vaegail line a script prints under --dry-run names a command whose --help lists each of its options
 # (or the tool's own, such as --torch-threads), and every other program it calls is there.

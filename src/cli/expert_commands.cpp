@@ -11,10 +11,12 @@
 
 #include "cli/commands.h"
 #include "cli/task_options.h"
+#include "bench/physics_bench.h"
 #include "experts/arm_expert.h"
 #include "experts/demo_collection.h"
 #include "experts/expert_eval.h"
 #include "experts/expert_trainer.h"
+#include "experts/gait_eval.h"
 #include "experts/humanoid_gait.h"
 #include "experts/predictive_sampling.h"
 #include "env/humanoid.h"
@@ -211,6 +213,11 @@ struct EvalFlags {
   std::vector<std::string> only;
   ExpertEvalOptions eval;
   std::string json_out;
+  std::string task;                  // empty: the experts' own, from --dir
+  std::vector<std::string> styles;   // humanoid gait controllers' style files
+  GaitEvalOptions gait;
+  std::string csv_out;
+  double raw_seconds = 3.0;          // measuring time of the raw physics figure
 };
 
 // Arm experts keep their noise-free evaluation (the start and the actor are deterministic).
@@ -229,7 +236,49 @@ void run_eval_arm(const std::vector<std::string>& dirs, const std::string& json_
   if (!json_out.empty()) write_file_atomically(json_out, report.dump(2));
 }
 
+// The gait controllers of style files, each over the same starts, then the raw physics figure of
+// the same model in the same run, so that the two rates compare.
+void run_gait_eval(const EvalFlags& f) {
+  if (!f.task.empty() && f.task != "humanoid")
+    throw std::invalid_argument("experts eval --styles: gait controllers drive the humanoid, not --task " + f.task);
+  std::vector<std::pair<std::string, GaitParameters>> styles;
+  for (const auto& path : f.styles) styles.emplace_back(fs::path(path).stem().string(), read_gait_style(path));
+  Progress progress("eval", static_cast<std::int64_t>(styles.size()) * f.gait.episodes, "starts");
+  std::vector<GaitStyleEvaluation> results;
+  for (const auto& [name, parameters] : styles) {
+    progress.set_status(name);
+    results.push_back(evaluate_gait_style(name, parameters, f.gait, [&] { progress.advance(); }));
+  }
+  progress.finish();
+  const HumanoidEnv env;
+  const double raw = f.raw_seconds > 0 ? raw_physics_steps_per_s(env, f.raw_seconds) * env.model()->opt.timestep /
+                                             env.control_timestep()
+                                       : 0;
+  std::fputs(format_gait_evaluations(results, raw).c_str(), stdout);
+  if (!f.csv_out.empty()) {
+    std::string csv = "style";
+    for (const auto& [column, value] : gait_evaluation_row(results.front())) csv += "," + column;
+    csv += ",raw_control_steps_per_s\n";
+    for (const auto& e : results) {
+      csv += e.name;
+      for (const auto& [column, value] : gait_evaluation_row(e)) csv += fmt::format(",{}", value);
+      csv += fmt::format(",{}\n", raw);
+    }
+    write_file_atomically(f.csv_out, csv);
+  }
+  if (!f.json_out.empty()) {
+    nlohmann::json report = nlohmann::json::array();
+    for (const auto& e : results) {
+      nlohmann::json row = {{"style", e.name}, {"parameters", e.parameters}, {"raw_control_steps_per_s", raw}};
+      for (const auto& [column, value] : gait_evaluation_row(e)) row[column] = value;
+      report.push_back(row);
+    }
+    write_file_atomically(f.json_out, report.dump(2));
+  }
+}
+
 void run_eval(const EvalFlags& f) {
+  if (!f.styles.empty()) return run_gait_eval(f);
   const auto dirs = expert_dirs(f.dir, f.only);
   if (fs::exists(fs::path(dirs.front()) / "actor.pt")) return run_eval_arm(dirs, f.json_out);
   std::vector<ExpertEvaluation> results;
@@ -445,14 +494,32 @@ void add_expert_commands(CLI::App& app) {
   train->callback([t] { run_expert_train(*t); });
 
   auto e = std::make_shared<EvalFlags>();
-  CLI::App* eval = experts->add_subcommand("eval", "walker: mean speed, distance to target and fall rate per expert and target; arm: final distance to the target");
+  CLI::App* eval = experts->add_subcommand("eval", "walker: mean speed, distance to target and fall rate per expert and target; arm: final distance to the target; humanoid --styles: gait controllers' falls with and without pushes, gait measures and speed");
   eval->add_option("--dir", e->dir, "directory of expert runs")->capture_default_str();
   eval->add_option("--only", e->only, "evaluate only these expert ids");
   eval->add_option("--episodes", e->eval.episodes_per_target, "episodes per target speed")->check(CLI::Range(1, 100000))->capture_default_str();
   eval->add_flag("--stochastic", e->eval.stochastic, "sample actions instead of taking the mean");
   eval->add_option("--seed", e->eval.seed, "episode seeds")->capture_default_str();
   eval->add_option("--json", e->json_out, "also write the table as JSON (input of demos collect --passing)");
-  eval->callback([e] { run_eval(*e); });
+  eval->add_option("--task", e->task, "the experts' task (default: --dir's own); humanoid with --styles")
+      ->check(CLI::IsMember({"walker", "humanoid", "arm"}));
+  eval->add_option("--styles", e->styles, "humanoid gait controllers' style files (configs/humanoid_styles/*/*.json): evaluate these instead of --dir; --episodes defaults to 20 starts, each walked without and with pushes")
+      ->check(CLI::ExistingFile);
+  eval->add_option("--pushes", e->gait.episode.pushes, "--styles: pushes on the pelvis per pushed episode, at uniform times in [2, 8] s and directions")
+      ->check(CLI::Range(0, 100))->capture_default_str();
+  eval->add_option("--push-force", e->gait.episode.push_force, "--styles: each push's force (N)")->check(CLI::Range(0.0, 1e4))->capture_default_str();
+  eval->add_option("--push-duration", e->gait.episode.push_duration, "--styles: each push's duration (s)")->check(CLI::Range(0.0, 10.0))->capture_default_str();
+  eval->add_flag("--replay", e->gait.replay, "--styles: also the held-mean replay figure per start (control steps until the root is 0.1 m off when the recorded mean actions are replayed held)");
+  eval->add_option("--csv", e->csv_out, "--styles: also write one row per style here");
+  eval->add_option("--raw-seconds", e->raw_seconds, "--styles: seconds of bare mj_step measured after the episodes, for the raw physics figure (0: skip)")
+      ->check(CLI::Range(0.0, 600.0))->capture_default_str();
+  eval->callback([e, eval] {
+    if (!e->styles.empty()) {
+      e->gait.episodes = eval->count("--episodes") ? e->eval.episodes_per_target : 20;
+      e->gait.seed = e->eval.seed;
+    }
+    run_eval(*e);
+  });
 
   auto p = std::make_shared<PlanFlags>();
   CLI::App* plan = experts->add_subcommand("plan", "humanoid: predictive-sampling MPC (no training) in each style; how long each episode stays up");
