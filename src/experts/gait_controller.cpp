@@ -13,10 +13,10 @@ namespace {
 double pitch_in_heading(const double* xmat, double heading) {
   return std::atan2(std::cos(heading) * xmat[2] + std::sin(heading) * xmat[5], xmat[8]);
 }
-double roll_of(const double* xmat) { return std::atan2(xmat[7], xmat[8]); }
-const double* world_axis(const mjData* d, int joint) { return d->xaxis + 3 * joint; }
+double body_roll(const double* xmat) { return std::atan2(xmat[7], xmat[8]); }
+const double* joint_world_axis(const mjData* d, int joint) { return d->xaxis + 3 * joint; }
 // The angular part of a body's velocity (world frame).
-const double* angular_velocity(const mjData* d, int body) { return d->cvel + 6 * body; }
+const double* body_angular_velocity(const mjData* d, int body) { return d->cvel + 6 * body; }
 }  // namespace
 
 GaitController::GaitController(const GaitSkeleton& skeleton, GaitParameters parameters)
@@ -65,9 +65,9 @@ Vec3 GaitController::control_swing_leg(const mjModel* m, mjData* d, double headi
   const LegPose pose = two_link_ik({hip[0], hip[1], hip[2]}, ankle, {std::cos(knee_direction), std::sin(knee_direction), 0},
                                    skeleton_.thigh, skeleton_.shank);
 
-  const Vec3 swing_torque = orientation_pd(pose.femur, d->xmat + 9 * swing.femur, angular_velocity(d, swing.femur),
+  const Vec3 swing_torque = orientation_pd(pose.femur, d->xmat + 9 * swing.femur, body_angular_velocity(d, swing.femur),
                                            p_.kp_swing_hip, p_.kd_swing_hip);
-  const Vec3 hips = hinge_torques(world_axis(d, swing.hip_rz), world_axis(d, swing.hip_ry), world_axis(d, swing.hip_rx),
+  const Vec3 hips = hinge_torques(joint_world_axis(d, swing.hip_rz), joint_world_axis(d, swing.hip_ry), joint_world_axis(d, swing.hip_rx),
                                   swing_torque);
   const int hip_joints[3] = {swing.hip_rz, swing.hip_ry, swing.hip_rx};
   for (int k = 0; k < 3; ++k) torque_[hip_joints[k]] = hips[k] + d->qfrc_bias[m->jnt_dofadr[hip_joints[k]]];
@@ -76,7 +76,7 @@ Vec3 GaitController::control_swing_leg(const mjModel* m, mjData* d, double headi
   const double* tibia = d->xmat + 9 * swing.tibia;
   const double foot_pitch = phase < 1 ? p_.swing_ankle : p_.swing_ankle_late;
   pd(d, swing.ankle_rx, foot_pitch - pitch_in_heading(tibia, heading), p_.kp_ankle, p_.kd_ankle, true);
-  pd(d, swing.ankle_rz, -roll_of(tibia), p_.kp_ankle, p_.kd_ankle, true);
+  pd(d, swing.ankle_rz, -body_roll(tibia), p_.kp_ankle, p_.kd_ankle, true);
   pd(d, swing.toe, 0, 4 * p_.kp_distal, 4 * p_.kd_distal, true);
   return swing_torque;
 }
@@ -90,11 +90,11 @@ void GaitController::control_stance_leg(const mjModel* m, mjData* d, double head
   const Mat3 pelvis_target =
       multiply(rotation_z(heading), multiply(rotation_y(p_.pelvis_pitch), rotation_x(-side * p_.pelvis_roll)));
   const Vec3 torso_torque = orientation_pd(pelvis_target, d->xmat + 9 * skeleton_.root,
-                                           angular_velocity(d, skeleton_.root), p_.kp_torso, p_.kd_torso);
+                                           body_angular_velocity(d, skeleton_.root), p_.kp_torso, p_.kd_torso);
   const Vec3 support = support_torque(m, d, skeleton_.root, stance.femur, d->xanchor + 3 * stance.hip_rx);
   Vec3 hip_torque;
   for (int k = 0; k < 3; ++k) hip_torque[k] = share * p_.hip_support * support[k] - torso_torque[k] - swing_torque[k];
-  const Vec3 hips = hinge_torques(world_axis(d, stance.hip_rz), world_axis(d, stance.hip_ry), world_axis(d, stance.hip_rx),
+  const Vec3 hips = hinge_torques(joint_world_axis(d, stance.hip_rz), joint_world_axis(d, stance.hip_ry), joint_world_axis(d, stance.hip_rx),
                                   hip_torque);
   torque_[stance.hip_rz] = hips[0];
   torque_[stance.hip_ry] = hips[1];
@@ -102,14 +102,14 @@ void GaitController::control_stance_leg(const mjModel* m, mjData* d, double head
 
   pd(d, stance.knee, p_.stance_knee, p_.kp_knee, p_.kd_knee, false);
   const Vec3 above_knee = support_torque(m, d, skeleton_.root, stance.tibia, d->xanchor + 3 * stance.knee);
-  torque_[stance.knee] += share * p_.knee_support * mju_dot3(world_axis(d, stance.knee), above_knee.data());
+  torque_[stance.knee] += share * p_.knee_support * mju_dot3(joint_world_axis(d, stance.knee), above_knee.data());
 
   const double* tibia = d->xmat + 9 * stance.tibia;
   pd(d, stance.ankle_rx, p_.stance_ankle - pitch_in_heading(tibia, heading), p_.kp_ankle, p_.kd_ankle, false);
-  pd(d, stance.ankle_rz, -roll_of(tibia), p_.kp_ankle, p_.kd_ankle, false);
+  pd(d, stance.ankle_rz, -body_roll(tibia), p_.kp_ankle, p_.kd_ankle, false);
   const Vec3 above_ankle = support_torque(m, d, skeleton_.root, stance.foot, d->xanchor + 3 * stance.ankle_rx);
   for (int joint : {stance.ankle_rx, stance.ankle_rz})
-    torque_[joint] += share * p_.ankle_support * mju_dot3(world_axis(d, joint), above_ankle.data());
+    torque_[joint] += share * p_.ankle_support * mju_dot3(joint_world_axis(d, joint), above_ankle.data());
   pd(d, stance.toe, 0, 4 * p_.kp_distal, 4 * p_.kd_distal, false);
 }
 
@@ -118,7 +118,7 @@ void GaitController::control_upper_body(const mjModel* m, const mjData* d, doubl
   // The lateral lean's target is filtered: it flips sides at every swap.
   back_roll_target_ += (-stance_side * p_.back_roll - back_roll_target_) * std::min(1.0, m->opt.timestep / p_.back_roll_filter);
   // The back bends so that the thorax, on the rolling pelvis, leans as wanted in the world.
-  const double bend = std::clamp(back_roll_target_ - roll_of(d->xmat + 9 * skeleton_.root), -0.5, 0.5);
+  const double bend = std::clamp(back_roll_target_ - body_roll(d->xmat + 9 * skeleton_.root), -0.5, 0.5);
   for (const auto& [flexion, lateral, twist] : skeleton_.back) {
     pd(d, flexion, p_.back_pitch / 3, p_.kp_back, p_.kd_back, true);
     pd(d, lateral, bend / 3, p_.kp_back, p_.kd_back, true);

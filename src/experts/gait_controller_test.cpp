@@ -19,21 +19,17 @@
 namespace vaegail {
 namespace {
 
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
+std::string xml_with_replaced(std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   return text.replace(at, from.size(), to);
 }
 
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-
 // The humanoid with its pelvis fixed in the air (no free joint), joint limits and contacts off:
 // every hinge can be posed anywhere and only gravity and the applied torques act.
 std::shared_ptr<const MujocoModel> pinned_humanoid() {
-  std::string xml = replaced(embedded_model("humanoid_cmu.xml"), "<freejoint name=\"root\"/>", "");
-  xml = replaced(xml, "<option timestep=\"0.005\"/>",
+  std::string xml = xml_with_replaced(embedded_model("humanoid_cmu.xml"), "<freejoint name=\"root\"/>", "");
+  xml = xml_with_replaced(xml, "<option timestep=\"0.005\"/>",
                  "<option timestep=\"0.005\"><flag contact=\"disable\" limit=\"disable\"/></option>");
   return MujocoModel::from_xml("pinned_humanoid.xml", xml);
 }
@@ -41,7 +37,7 @@ std::shared_ptr<const MujocoModel> pinned_humanoid() {
 TEST(GaitVirtualModel, HipTorquesFromGravityTorqueHoldAPosedHangingLegStill) {
   const auto model = pinned_humanoid();
   const mjModel* m = model->get();
-  std::unique_ptr<mjData, DataDeleter> d(mj_makeData(m));
+  MjDataPtr d(mj_makeData(m));
   Rng rng(3);
   for (int j = 0; j < m->njnt; ++j) d->qpos[m->jnt_qposadr[j]] = rng.uniform(-0.6, 0.6);  // velocities stay 0
   mj_forward(m, d.get());
@@ -67,7 +63,7 @@ TEST(GaitVirtualModel, HipTorquesFromGravityTorqueHoldAPosedHangingLegStill) {
 TEST(GaitVirtualModel, SupportTorqueIsTheWeightOfTheRestTimesItsLeverAboutTheStanceHip) {
   const auto model = MujocoModel::from_xml("humanoid_cmu.xml", embedded_model("humanoid_cmu.xml"));
   const mjModel* m = model->get();
-  std::unique_ptr<mjData, DataDeleter> d(mj_makeData(m));
+  MjDataPtr d(mj_makeData(m));
   mj_forward(m, d.get());  // the rest pose
   const GaitSkeleton skeleton(m, "humanoid");
   const GaitLeg& stance = skeleton.legs[0];

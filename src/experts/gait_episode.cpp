@@ -11,8 +11,8 @@
 namespace vaegail {
 
 namespace {
-constexpr std::uint64_t kPushStream = 1;  // the pushes' stream of the episode's seed
-constexpr double kTransientSeconds = 1.0;  // the start left out of the means
+constexpr std::uint64_t kGaitPushStream = 1;  // the pushes' stream of the episode's seed
+constexpr double kGaitTransientSeconds = 1.0;  // the start left out of the means
 
 struct PelvisPush {
   double start = 0, end = 0;  // s since the reset
@@ -20,7 +20,7 @@ struct PelvisPush {
 };
 
 std::vector<PelvisPush> draw_pushes(const GaitEpisodeOptions& o) {
-  Rng rng(derive_seed(o.seed, kPushStream));
+  Rng rng(derive_seed(o.seed, kGaitPushStream));
   std::vector<PelvisPush> pushes;
   for (int k = 0; k < o.pushes; ++k) {
     const double start = rng.uniform(o.push_earliest, o.push_latest), direction = rng.uniform(0, 2 * M_PI);
@@ -53,12 +53,12 @@ class PushedGait : public PhysicsStepController {
 
 // Footholds' mean step length and width (in the frame of the heading at each landing) and
 // cadence, over the steps that land after the transient.
-void step_statistics(const std::vector<Foothold>& footholds, const GaitParameters& p, GaitEpisodeResult& r) {
+void foothold_statistics(const std::vector<Foothold>& footholds, const GaitParameters& p, GaitEpisodeResult& r) {
   double length = 0, width = 0;
   int counted = 0;
   size_t first = 0;
   for (size_t k = 1; k < footholds.size(); ++k) {
-    if (footholds[k].time < kTransientSeconds) continue;
+    if (footholds[k].time < kGaitTransientSeconds) continue;
     if (counted == 0) first = k - 1;
     const Vec2 step = to_heading_frame({footholds[k].x - footholds[k - 1].x, footholds[k].y - footholds[k - 1].y},
                                        commanded_heading(p, footholds[k].time));
@@ -100,7 +100,7 @@ GaitEpisodeResult run_gait_episode(HumanoidEnv& env, const GaitParameters& p, co
     const double time = env.data()->time;
     r.final_heading_error = std::abs(std::remainder(env.heading() - commanded_heading(p, time), 2 * M_PI));
     for (float a : action) r.effort += static_cast<double>(a) * a / action.size();
-    if (time < kTransientSeconds) continue;
+    if (time < kGaitTransientSeconds) continue;
     ++measured;
     r.heading_error += r.final_heading_error;
     r.speed += env.forward_speed();
@@ -120,7 +120,7 @@ GaitEpisodeResult run_gait_episode(HumanoidEnv& env, const GaitParameters& p, co
   r.distance = moved[0];
   r.lateral_drift = moved[1];
   r.steps = gait.state().steps();
-  step_statistics(gait.footholds(), p, r);
+  foothold_statistics(gait.footholds(), p, r);
   r.signature = gait_signature(episode, env.feature_names(), env.control_timestep());
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
