@@ -72,7 +72,7 @@ void validate_episode(const Episode& e, const DemoHeader& h, const std::string& 
 }
 
 DemoWriter::DemoWriter(std::string path, DemoHeader header)
-    : path_(std::move(path)), tmp_path_(temporary_path_for(path_)), header_(std::move(header)) {
+    : path_(std::move(path)), tmp_path_(fresh_temporary_path(path_)), header_(std::move(header)) {
   h5::silence_errors();
   file_ = h5::create_file(tmp_path_, path_).release();
 }

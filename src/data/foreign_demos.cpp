@@ -235,7 +235,7 @@ void adopt_env(DemoSet& set, const Env& env) {
 void export_minari(const DemoSet& set, const std::string& dir, const std::string& dataset_id, bool replace) {
   const fs::path target = fs::path(dir).lexically_normal();
   if (fs::exists(target) && !replace) throw std::runtime_error(dir + ": exists (pass --force to replace it)");
-  const fs::path tmp = target.string() + ".tmp-" + std::to_string(::getpid());
+  const fs::path tmp = fresh_temporary_path(target.string());
   fs::remove_all(tmp);
   try {
     fs::create_directories(tmp);

@@ -31,7 +31,7 @@ void Mp4Writer::fail(const std::string& what, int error) const {
 }
 
 Mp4Writer::Mp4Writer(std::string path, VideoFormat format)
-    : path_(std::move(path)), tmp_path_(temporary_path_for(path_)), format_(format) {
+    : path_(std::move(path)), tmp_path_(fresh_temporary_path(path_)), format_(format) {
   if (format.width < 2 || format.height < 2 || format.width % 2 || format.height % 2)
     fail("video of " + std::to_string(format.width) + "x" + std::to_string(format.height) +
          " pixels: width and height must be even (H.264 in yuv420p)", 0);

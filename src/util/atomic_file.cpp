@@ -1,8 +1,10 @@
 #include "util/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -51,6 +53,21 @@ std::string temporary_path_for(const std::string& path) {
   return path + ".tmp-" + std::to_string(static_cast<long>(getpid()));
 }
 
+std::string fresh_temporary_path(const std::string& path) {
+  namespace fs = std::filesystem;
+  const std::string prefix = fs::path(path).filename().string() + ".tmp-";
+  std::error_code error;
+  for (fs::directory_iterator it(folder_of(path), error), end; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string(), pid = name.substr(std::min(prefix.size(), name.size()));
+    if (name.rfind(prefix, 0) != 0 || pid.empty() || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos)
+      continue;
+    // kill(pid, 0) fails with ESRCH only when no process has that id; a live one's file stays.
+    std::error_code ignored;  // best effort: a leftover that cannot go does not stop the write
+    if (::kill(static_cast<pid_t>(std::stol(pid)), 0) != 0 && errno == ESRCH) fs::remove_all(it->path(), ignored);
+  }
+  return temporary_path_for(path);
+}
+
 std::string first_line(const std::string& message) { return message.substr(0, message.find('\n')); }
 
 bool names_in_one_line(const std::string& message, const std::string& path) {
@@ -73,7 +90,7 @@ void move_into_place(const std::string& tmp, const std::string& path, const std:
 
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write,
                       const std::string& keep_previous) {
-  const std::string tmp = temporary_path_for(path);
+  const std::string tmp = fresh_temporary_path(path);
   try {
     write(tmp);
   } catch (const std::exception& e) {

@@ -1,6 +1,6 @@
 // Files that appear whole or not at all: write to a temporary name beside the target, sync it
 // to disk, then rename it over the target. A killed writer leaves at most a "*.tmp-PID" file,
-// never a half target; a failing write (a full disk, an I/O error) removes the temporary file,
+// never a half target, and the next writer of the target removes it; a failing write (a full disk, an I/O error) removes the temporary file,
 // leaves the target as it was and throws std::runtime_error of one line naming the target and
 // the cause.
 //
@@ -15,6 +15,11 @@ namespace vaegail {
 
 // The temporary name used for `path` by this process.
 std::string temporary_path_for(const std::string& path);
+
+// temporary_path_for(path), after removing the temporary files (or folders) for `path` whose
+// writer was killed before renaming them: PATH.tmp-PID where no process PID runs. A writer
+// starts with it, so that a killed run's leftovers go when the run is redone.
+std::string fresh_temporary_path(const std::string& path);
 
 // Syncs the finished file `tmp` to disk, renames it to `path` and syncs the folder, so that
 // `path` holds the new contents even across a power cut. When `keep_previous` is not empty, an

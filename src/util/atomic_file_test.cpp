@@ -41,6 +41,32 @@ TEST(AtomicFile, FailedWriteLeavesTargetAndNoTemporary) {
   std::remove(path.c_str());
 }
 
+// The id of a process that has ended and been reaped: no process has it now.
+pid_t ended_process() {
+  const pid_t pid = fork();
+  if (pid == 0) _exit(0);
+  waitpid(pid, nullptr, 0);
+  return pid;
+}
+
+// A writer SIGKILLed mid-write leaves PATH.tmp-PID (a file, or data_export's folder); the next write
+// of PATH removes it, but not the file of a writer still running, nor a name that only looks like one.
+TEST(AtomicFile, TheNextWriteRemovesTheTemporaryFilesOfKilledWriters) {
+  const std::string path = scratch("killed.txt");
+  const std::string left_file = path + ".tmp-" + std::to_string(ended_process()),
+                    left_folder = path + ".tmp-" + std::to_string(ended_process()),
+                    running = path + ".tmp-" + std::to_string(getppid()), other = path + ".tmp-notes";
+  for (const auto& name : {left_file, running, other}) std::fclose(std::fopen(name.c_str(), "w"));
+  std::filesystem::create_directories(left_folder + "/data");
+  write_file_atomically(path, "new");
+  EXPECT_EQ(read_file(path), "new");
+  EXPECT_FALSE(std::filesystem::exists(left_file));
+  EXPECT_FALSE(std::filesystem::exists(left_folder));
+  EXPECT_TRUE(std::filesystem::exists(running));
+  EXPECT_TRUE(std::filesystem::exists(other));
+  for (const auto& name : {path, running, other}) std::remove(name.c_str());
+}
+
 TEST(AtomicFile, ReadingAMissingFileNamesIt) {
   try {
     read_file("/nonexistent/vaegail.txt");
