@@ -148,7 +148,7 @@ run_in "$tmp" data export "$tmp/body.h5" --minari "$tmp/body_minari"
 run_in "$tmp" data import "$tmp/body_minari" --out "$tmp/body_back.h5"
 grep -q "body stored in the file" "$tmp/stdout" || fail "data import of an exported directory lost the body"
 expect_error "body_minari: exists (pass --force" "" -- data export "$tmp/body.h5" --minari "$tmp/body_minari"
-expect_error "nothing: neither a Minari dataset directory nor an imitation .npz" "$tmp/i.h5" -- \
+expect_error "nothing: no Minari dataset (no $tmp/nothing/data/metadata.json, $tmp/nothing/metadata.json)" "$tmp/i.h5" -- \
   data import "$tmp/nothing" --out "$tmp/i.h5"
 fixtures=$root/src/data/testdata/write_foreign_demos.py
 if /usr/bin/python3 -c 'import h5py, numpy' 2> /dev/null; then
@@ -156,6 +156,10 @@ if /usr/bin/python3 -c 'import h5py, numpy' 2> /dev/null; then
   /usr/bin/python3 "$fixtures" npz "$tmp/trajectories.npz" && /usr/bin/python3 "$fixtures" minari "$tmp/minari"
   run_in "$tmp" data import "$tmp/trajectories.npz" --out "$tmp/npz.h5"
   run_in "$tmp" data import "$tmp/minari" --out "$tmp/minari.h5"
+  # Minari's own root: a dataset ID under $MINARI_DATASETS_PATH.
+  mkdir -p "$tmp/minari_root/tiny" && mv "$tmp/minari" "$tmp/minari_root/tiny/expert-v0"
+  (cd "$tmp" && MINARI_DATASETS_PATH="$tmp/minari_root" "$v" data import tiny/expert-v0 --out "$tmp/by_id.h5") \
+    > "$tmp/stdout" 2>&1 || fail "data import ID under MINARI_DATASETS_PATH: $(cat "$tmp/stdout")"
   expect_error "observations/actions of 2/1 components, task '$body' has 10/2" "$tmp/i.h5" -- \
     data import "$tmp/trajectories.npz" --out "$tmp/i.h5" --task "$body"
   expect_error "npz.h5: recorded on 'imitation', which is neither built in nor stored in the file" "$tmp/g" -- \

@@ -94,8 +94,6 @@ std::int64_t total_steps(const DemoSet& set) {
 void run_import(const ImportOptions& o) {
   if (std::filesystem::exists(o.out) && !o.force) throw std::runtime_error(o.out + ": exists (pass --force to replace it)");
   const bool npz = o.source.size() > 4 && o.source.compare(o.source.size() - 4, 4, ".npz") == 0;
-  if (!npz && !std::filesystem::is_directory(o.source))
-    throw std::invalid_argument(o.source + ": neither a Minari dataset directory nor an imitation .npz file");
   DemoSet set = npz ? import_imitation_npz(o.source) : import_minari(o.source);
   if (!o.task.empty()) {
     TaskOptions task;
@@ -119,16 +117,19 @@ void run_export(const ExportOptions& o) {
   const std::string id = o.dataset_id.empty() ? "vaegail/" + std::filesystem::path(o.file).stem().string() + "-v0"
                                               : o.dataset_id;
   export_minari(set, o.minari_dir, id, o.force);
-  std::printf("wrote %s/{main_data.hdf5, metadata.json}: dataset_id %s, %zu episodes, %lld steps\n",
+  std::printf("wrote %s/data/{main_data.hdf5, metadata.json}: dataset_id %s, %zu episodes, %lld steps\n",
               o.minari_dir.c_str(), id.c_str(), set.episodes.size(), static_cast<long long>(total_steps(set)));
 }
 
 void add_import_export(CLI::App& data) {
   auto in = std::make_shared<ImportOptions>();
   CLI::App* import = data.add_subcommand(
-      "import", "demonstrations from a Minari dataset directory (metadata.json + main_data.hdf5) or an imitation "
-                "library .npz into a demonstration file");
-  import->add_option("source", in->source, "Minari dataset directory, or imitation trajectories (.npz)")->required();
+      "import", "demonstrations from a Minari dataset (DATASET/data/{metadata.json, main_data.hdf5}) or an "
+                "imitation library .npz into a demonstration file");
+  import->add_option("source", in->source,
+                     "a Minari dataset: its directory, its data/ folder or its ID (e.g. D4RL/door/human-v2, looked up "
+                     "under $MINARI_DATASETS_PATH, else ~/.minari/datasets); or imitation trajectories (.npz)")
+      ->required();
   import->add_option("--out", in->out, "demonstration file to write (.h5)")->required();
   import->add_option("--task", in->task,
                      "the task or MJCF body the demonstrations were recorded on: names their components and stores "
@@ -137,7 +138,9 @@ void add_import_export(CLI::App& data) {
   import->callback([in] { run_import(*in); });
 
   auto out = std::make_shared<ExportOptions>();
-  CLI::App* exp = data.add_subcommand("export", "write a demonstration file as a Minari dataset directory");
+  CLI::App* exp = data.add_subcommand(
+      "export", "write a demonstration file as a Minari dataset directory (DIR/data/{main_data.hdf5, metadata.json}; "
+                "DIR = ~/.minari/datasets/ID makes it minari.load_dataset(ID)'s)");
   exp->add_option("file", out->file, "demonstration file (.h5)")->required();
   exp->add_option("--minari", out->minari_dir, "dataset directory to write (appears whole or not at all)")->required();
   exp->add_option("--dataset-id", out->dataset_id, "Minari's dataset_id (default: vaegail/FILE_STEM-v0)");

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -21,6 +22,7 @@ namespace {
 
 const char* const kMainFile = "main_data.hdf5";
 const char* const kMetadataFile = "metadata.json";
+const char* const kDataFolder = "data";  // a dataset directory's folder of files
 
 std::vector<std::string> numbered(const std::string& prefix, int n) {
   std::vector<std::string> names;
@@ -128,10 +130,30 @@ BoxSpec unbounded_box(int dim) {
 
 }  // namespace
 
-DemoSet import_minari(const std::string& dir) {
+std::string minari_datasets_root() {
+  const char* root = std::getenv("MINARI_DATASETS_PATH");
+  if (root && *root) return root;
+  const char* home = std::getenv("HOME");
+  return home && *home ? (fs::path(home) / ".minari" / "datasets").string() : "";
+}
+
+std::string minari_data_dir(const std::string& source) {
+  std::vector<fs::path> candidates = {fs::path(source) / kDataFolder, fs::path(source)};
+  // An ID is a relative name under the root; an absolute path names a directory only.
+  const std::string root = minari_datasets_root();
+  if (!root.empty() && fs::path(source).is_relative())
+    candidates.push_back(fs::path(root) / source / kDataFolder);
+  std::string looked;
+  for (const auto& dir : candidates) {
+    if (fs::is_regular_file(dir / kMetadataFile)) return dir.lexically_normal().string();
+    looked += (looked.empty() ? "" : ", ") + (dir / kMetadataFile).lexically_normal().string();
+  }
+  throw DataError(source + ": no Minari dataset (no " + looked + ")");
+}
+
+DemoSet import_minari(const std::string& source) {
+  const std::string dir = minari_data_dir(source);
   const std::string meta_path = (fs::path(dir) / kMetadataFile).string(), main_path = (fs::path(dir) / kMainFile).string();
-  if (!fs::is_directory(dir)) throw DataError(dir + ": not a directory (a Minari dataset is one)");
-  if (!fs::exists(meta_path)) throw DataError(dir + ": no " + kMetadataFile + " (not a Minari dataset directory)");
   const auto metadata = parse_python_json(read_file(meta_path), meta_path);
   const std::string format = metadata.value("data_format", "hdf5");
   if (format != "hdf5") throw DataError(meta_path + ": data_format '" + format + "': only hdf5 datasets are read");
@@ -236,12 +258,13 @@ void export_minari(const DemoSet& set, const std::string& dir, const std::string
   const fs::path target = fs::path(dir).lexically_normal();
   if (fs::exists(target) && !replace) throw std::runtime_error(dir + ": exists (pass --force to replace it)");
   const fs::path tmp = fresh_temporary_path(target.string());
+  const fs::path tmp_data = tmp / kDataFolder;
   fs::remove_all(tmp);
   try {
-    fs::create_directories(tmp);
+    fs::create_directories(tmp_data);
     DemoHeader header = set.header;
     header.body_mjcf.clear();  // in metadata.json: Minari counts the main file's groups as episodes
-    DemoWriter writer((tmp / kMainFile).string(), header);
+    DemoWriter writer((tmp_data / kMainFile).string(), header);
     std::int64_t steps = 0;
     for (const auto& e : set.episodes) {
       writer.append(e);
@@ -260,7 +283,7 @@ void export_minari(const DemoSet& set, const std::string& dir, const std::string
         {"vaegail_env_id", header.env_id},
         {"vaegail_body_mjcf", set.header.body_mjcf},
         {"vaegail_body_sha256", sha256_hex(set.header.body_mjcf)}};
-    write_file_atomically((tmp / kMetadataFile).string(), metadata.dump(2) + "\n");
+    write_file_atomically((tmp_data / kMetadataFile).string(), metadata.dump(2) + "\n");
     const fs::path previous = target.string() + ".old-" + std::to_string(::getpid());
     if (fs::exists(target)) fs::rename(target, previous);
     fs::rename(tmp, target);

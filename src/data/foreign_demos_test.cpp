@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "data/demos_test_support.h"
 #include "data/npy.h"
@@ -39,9 +40,21 @@ void expect_data_error(const std::function<void()>& f, const std::string& fragme
   }
 }
 
-TEST(ForeignDemos, AMinariDatasetWrittenByH5pyImports) {
-  if (!have_fixture_tools()) GTEST_SKIP() << "no python3-h5py";
-  const DemoSet set = import_minari(fixture("minari", "minari"));
+// Sets an environment variable for the life of the object, then puts back what was there.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const std::string& value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    setenv(name, value.c_str(), 1);
+  }
+  ~ScopedEnv() { old_ ? setenv(name_, old_->c_str(), 1) : unsetenv(name_); }
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+void expect_tiny_minari_dataset(const DemoSet& set) {
   EXPECT_EQ(set.header.env_id, "TinyHopper-v0");  // env_spec's id
   EXPECT_EQ(set.header.observation_names, (std::vector<std::string>{"obs_0", "obs_1", "obs_2"}));
   EXPECT_EQ(set.header.action_names, (std::vector<std::string>{"act_0", "act_1"}));
@@ -62,11 +75,44 @@ TEST(ForeignDemos, AMinariDatasetWrittenByH5pyImports) {
   }
 }
 
+// Minari keeps dataset ID in ROOT/ID/data/; import takes the dataset directory, its data folder or
+// the ID, the same dataset each way.
+TEST(ForeignDemos, AMinariDatasetWrittenByH5pyImportsByDirectoryDataFolderOrId) {
+  if (!have_fixture_tools()) GTEST_SKIP() << "no python3-h5py";
+  const std::string root = (fs::temp_directory_path() / "vaegail_foreign_minari_root").string();
+  fs::remove_all(root);
+  const std::string dataset = fixture("minari", "minari_root/tiny/expert-v0");
+  SCOPED_TRACE(dataset);
+  {
+    SCOPED_TRACE("directory");
+    expect_tiny_minari_dataset(import_minari(dataset));
+  }
+  {
+    SCOPED_TRACE("data folder");
+    expect_tiny_minari_dataset(import_minari(dataset + "/data"));
+  }
+  {
+    SCOPED_TRACE("ID");
+    const ScopedEnv datasets_path("MINARI_DATASETS_PATH", root);
+    EXPECT_EQ(minari_datasets_root(), root);
+    EXPECT_EQ(minari_data_dir("tiny/expert-v0"), root + "/tiny/expert-v0/data");
+    expect_tiny_minari_dataset(import_minari("tiny/expert-v0"));
+    expect_data_error([&] { import_minari("tiny/expert-v9"); },
+                      "tiny/expert-v9: no Minari dataset (no tiny/expert-v9/data/metadata.json, "
+                      "tiny/expert-v9/metadata.json, " + root + "/tiny/expert-v9/data/metadata.json)");
+  }
+  {
+    const ScopedEnv home("HOME", "/home/someone"), unset("MINARI_DATASETS_PATH", "");
+    EXPECT_EQ(minari_datasets_root(), "/home/someone/.minari/datasets");  // Minari's default
+  }
+  fs::remove_all(root);
+}
+
 TEST(ForeignDemos, AMinariDictSpaceIsRefusedByName) {
   if (!have_fixture_tools()) GTEST_SKIP() << "no python3-h5py";
   const std::string dir = fixture("minari_dict", "minari_dict");
   expect_data_error([&] { import_minari(dir); }, "observation_space is a Dict space: only Box");
-  expect_data_error([&] { import_minari(dir + "/nothing"); }, "not a directory");
+  expect_data_error([&] { import_minari(dir + "/nothing"); }, "nothing: no Minari dataset (no " + dir + "/nothing/data/metadata.json");
 }
 
 TEST(ForeignDemos, AnImitationNpzImportsSplitByItsIndices) {
@@ -112,6 +158,8 @@ TEST(ForeignDemos, AnExportedDirectoryReadsBackAndHasMinarisLayout) {
   const std::string dir = (fs::temp_directory_path() / "vaegail_foreign_export").string();
   fs::remove_all(dir);
   export_minari(set, dir, "vaegail/toy-v0");
+  EXPECT_TRUE(fs::is_regular_file(dir + "/data/main_data.hdf5"));  // Minari's layout: DIR/data/
+  EXPECT_TRUE(fs::is_regular_file(dir + "/data/metadata.json"));
   const DemoSet back = import_minari(dir);
   EXPECT_EQ(toy_contents_difference(back), "");
   EXPECT_EQ(back.header.body_mjcf, "<mujoco/>");

@@ -18,8 +18,10 @@ def minari_obs(ep, T):
     return ep * 10 + np.arange(T + 1)[:, None] + 0.1 * np.arange(3)[None, :]
 
 
-def write_minari(path, dict_space=False):
+def write_minari(dataset_dir, dict_space=False):
+    """As Minari lays a dataset out: DATASET/data/{metadata.json, main_data.hdf5}."""
     import os
+    path = os.path.join(dataset_dir, "data")
     os.makedirs(path, exist_ok=True)
     inf_box = lambda n, dtype: json.dumps({"type": "Box", "dtype": dtype, "shape": [n],
                                            "low": [-np.inf] * n, "high": [np.inf] * n})
@@ -66,9 +68,11 @@ def write_npz(path):
                         indices=np.cumsum(NPZ_LENGTHS[:-1]))
 
 
-def check_minari(path):
-    """What Minari's MinariStorage.read and HDF5Storage.get_episodes rely on."""
+def check_minari(dataset_dir):
+    """What Minari's MinariStorage.read and HDF5Storage.get_episodes rely on, in the dataset
+    directory's data folder (minari.load_dataset reads ROOT/ID/data)."""
     import os
+    path = os.path.join(dataset_dir, "data")
     with open(os.path.join(path, "metadata.json")) as f:
         metadata = json.load(f)
     for key in ["dataset_id", "total_episodes", "total_steps", "data_format", "minari_version",
