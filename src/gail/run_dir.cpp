@@ -1,7 +1,6 @@
 #include "gail/run_dir.h"
 
 #include <filesystem>
-#include <sstream>
 #include <stdexcept>
 
 #include "util/atomic_file.h"
@@ -24,27 +23,6 @@ void check_or_write_config(const std::string& path, const nlohmann::json& config
                                   diff.front().at("path").get<std::string>() + "); use a new run directory");
   }
   write_file_atomically(path, config.dump(2));
-}
-
-namespace {
-int row_number(const std::string& line, int line_number, const std::string& path) {
-  try {
-    return std::stoi(line.substr(0, line.find(',')));
-  } catch (const std::exception&) {
-    throw std::runtime_error(path + ": line " + std::to_string(line_number) + ": the first column is not a number");
-  }
-}
-}  // namespace
-
-void truncate_metrics(const std::string& path, int last) {
-  if (!std::filesystem::exists(path)) return;
-  std::istringstream in(read_file(path));
-  std::string line, kept;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (in.eof()) break;  // a line without its newline: torn by a kill mid-write
-    if (number == 1 || (!line.empty() && row_number(line, number, path) <= last)) kept += line + "\n";
-  }
-  write_file_atomically(path, kept);
 }
 
 nlohmann::json read_run_config_json(const std::string& run_dir) {

@@ -1,5 +1,5 @@
-// What the GAIL and BC run directories share: a config a rerun must agree with, a metrics
-// log cut back to the last checkpoint, and the trained agent.
+// What the GAIL and BC run directories share: a config a rerun must agree with and the trained
+// agent (their metrics log is cut back to the last checkpoint by util/csv_log.h's truncate_metrics).
 #pragma once
 
 #include <functional>
@@ -28,12 +28,6 @@ void check_or_write_config(const std::string& path, const Options& options,
   check_or_write_config(path, nlohmann::json(options), resumable_keys,
                         [](const nlohmann::json& stored) { return nlohmann::json(stored.get<Options>()); });
 }
-
-// Drops the rows of a metrics CSV whose first column (the iteration or epoch) exceeds
-// `last`: rows logged by a run killed before its checkpoint, which the resumed run redoes;
-// and a last line without its newline (torn by the kill). A first column that is not a
-// number throws one line naming the file and the line.
-void truncate_metrics(const std::string& path, int last);
 
 // run_dir/config.json parsed; throws naming the file when it is missing or malformed.
 nlohmann::json read_run_config_json(const std::string& run_dir);

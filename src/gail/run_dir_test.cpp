@@ -145,19 +145,5 @@ TEST(RunDir, ResumingFromATruncatedLatestTakesThePrevious) {
   EXPECT_EQ(agent->parameters().front().flatten()[0].item<float>(), 1.f);
 }
 
-TEST(RunDir, TruncatingMetricsDropsRowsPastTheCheckpointAndATornLastRow) {
-  const std::string path = run_dir("metrics") + "/metrics.csv";
-  write_file_atomically(path, "iteration,loss\n1,0.5\n2,0.4\n3,0.3\n4,0.");
-  truncate_metrics(path, 2);
-  EXPECT_EQ(read_file(path), "iteration,loss\n1,0.5\n2,0.4\n");
-  write_file_atomically(path, "iteration,loss\n1,0.5\nx,0.4\n");
-  try {
-    truncate_metrics(path, 2);
-    FAIL();
-  } catch (const std::runtime_error& e) {
-    EXPECT_EQ(std::string(e.what()), path + ": line 3: the first column is not a number");
-  }
-}
-
 }  // namespace
 }  // namespace vaegail

@@ -1,9 +1,12 @@
 #include "util/csv_log.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <fmt/format.h>
 #include <sstream>
 #include <stdexcept>
+
+#include "util/atomic_file.h"
 
 namespace vaegail {
 
@@ -40,6 +43,27 @@ void CsvLog::write(const Metrics& row) {
     line += (line.empty() ? "" : ",") + fmt::format("{:.8g}", value->second);
   }
   out_ << line << "\n" << std::flush;
+}
+
+namespace {
+int metrics_row_number(const std::string& line, int line_number, const std::string& path) {
+  try {
+    return std::stoi(line.substr(0, line.find(',')));
+  } catch (const std::exception&) {
+    throw std::runtime_error(path + ": line " + std::to_string(line_number) + ": the first column is not a number");
+  }
+}
+}  // namespace
+
+void truncate_metrics(const std::string& path, int last) {
+  if (!std::filesystem::exists(path)) return;
+  std::istringstream in(read_file(path));
+  std::string line, kept;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (in.eof()) break;  // a line without its newline: torn by a kill mid-write
+    if (number == 1 || (!line.empty() && metrics_row_number(line, number, path) <= last)) kept += line + "\n";
+  }
+  write_file_atomically(path, kept);
 }
 
 std::vector<std::string> split_csv_line(const std::string& line) {

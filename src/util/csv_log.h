@@ -26,6 +26,12 @@ class CsvLog {
   std::ofstream out_;
 };
 
+// Drops the rows of a metrics CSV whose first column (the iteration or epoch) exceeds `last`:
+// rows a run logged after its last checkpoint before it was killed, which the resumed run redoes;
+// and a last line without its newline (torn by the kill). A first column that is not a number
+// throws one line naming the file and the line. A missing file is left missing.
+void truncate_metrics(const std::string& path, int last);
+
 // Cells of one CSV line split on commas (no quoting: our files never quote); a trailing comma
 // yields an empty last cell, so a row keeps its column count.
 std::vector<std::string> split_csv_line(const std::string& line);

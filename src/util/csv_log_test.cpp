@@ -64,5 +64,22 @@ TEST(SplitCsvLine, KeepsEmptyCellsIncludingATrailingOne) {
   EXPECT_TRUE(split_csv_line("").empty());
 }
 
+TEST(CsvLog, TruncatingMetricsDropsRowsPastTheCheckpointAndATornLastRow) {
+  const std::string path = temp_csv("vaegail_truncated_metrics.csv");
+  write_file_atomically(path, "iteration,loss\n1,0.5\n2,0.4\n3,0.3\n4,0.");
+  truncate_metrics(path, 2);
+  EXPECT_EQ(read_file(path), "iteration,loss\n1,0.5\n2,0.4\n");
+  write_file_atomically(path, "iteration,loss\n1,0.5\nx,0.4\n");
+  try {
+    truncate_metrics(path, 2);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": line 3: the first column is not a number");
+  }
+  std::remove(path.c_str());
+  truncate_metrics(path, 2);
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
 }  // namespace
 }  // namespace vaegail

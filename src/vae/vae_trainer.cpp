@@ -6,7 +6,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
-#include <sstream>
 #include <stdexcept>
 
 #include "util/atomic_file.h"
@@ -51,17 +50,6 @@ void accumulate(LossTerms& sum, const VaeLoss& loss, double weight) {
   sum.action_nll += weight * loss.action_nll.item<double>();
   sum.state_nll += weight * loss.state_nll.item<double>();
   sum.kl += weight * loss.kl.item<double>();
-}
-
-// A run killed after writing an epoch's row but before its checkpoint redoes that epoch on
-// resume; dropping the rows past the checkpoint keeps one row per epoch.
-void drop_metric_rows_after(const std::string& path, int epoch) {
-  if (!std::filesystem::exists(path)) return;
-  std::istringstream in(read_file(path));
-  std::string kept, line;
-  for (bool header = true; std::getline(in, line); header = false)
-    if (header || std::stod(line.substr(0, line.find(','))) <= epoch) kept += line + "\n";
-  write_file_atomically(path, kept);
 }
 
 LossTerms scaled(LossTerms t, double factor) {
@@ -128,7 +116,7 @@ VaeTrainer::VaeTrainer(const VaeConfig& config, TrainerOptions options, Trajecto
 
   std::filesystem::create_directories(std::filesystem::path(options_.run_dir) / "checkpoints");
   if (std::filesystem::exists(checkpoint_path())) load_checkpoint(checkpoint_path());
-  drop_metric_rows_after(metrics_path(), epoch_);
+  truncate_metrics(metrics_path(), epoch_);  // rows past the checkpoint: the resumed run redoes them
   config_.save((std::filesystem::path(options_.run_dir) / "config.json").string());
 }
 
