@@ -12,6 +12,7 @@
 #include "rl/rollout.h"
 #include "rl/update_batch.h"
 #include "util/atomic_file.h"
+#include "util/checkpoint_file.h"
 #include "util/csv_log.h"
 #include "util/json_file.h"
 #include "util/malloc_tuning.h"
@@ -64,11 +65,12 @@ struct RunState {
   double seconds = 0;  // training wall-clock up to the checkpoint, summed over resumed calls
 };
 
-RunState read_state(const std::string& run_dir) {
+nlohmann::json state_json(const RunState& s) {
+  return {{"iteration", s.iteration}, {"steps", s.steps}, {"done", s.done}, {"seconds", s.seconds}};
+}
+
+RunState state_of(const nlohmann::json& j) {
   RunState s;
-  const std::string path = run_dir + "/state.json";
-  if (!fs::exists(path)) return s;
-  const auto j = read_json_file(path);
   s.iteration = j.at("iteration");
   s.steps = j.at("steps");
   s.done = j.at("done");
@@ -76,11 +78,34 @@ RunState read_state(const std::string& run_dir) {
   return s;
 }
 
-void save(Agent& agent, const RunState& s, const std::string& run_dir) {
-  agent.save_checkpoint(run_dir + "/agent.pt");
-  write_file_atomically(run_dir + "/state.json",
-                        nlohmann::json{{"iteration", s.iteration}, {"steps", s.steps}, {"done", s.done},
-                                        {"seconds", s.seconds}}.dump(2));
+// state.json, for readers that do not load the agent (expert_done, expert_steps).
+RunState read_state(const std::string& run_dir) {
+  const std::string path = run_dir + "/state.json";
+  return fs::exists(path) ? state_of(read_json_file(path)) : RunState{};
+}
+
+// The state agent.pt was saved in. The checkpoint carries it: a kill between writing agent.pt
+// and state.json would otherwise resume the new weights at the old iteration count. An expert
+// trained before has none there, and goes by state.json.
+RunState checkpoint_state(const std::string& run_dir) {
+  const std::string path = run_dir + "/agent.pt";
+  if (!fs::exists(path)) return read_state(run_dir);
+  std::string state;
+  read_checkpoint(path, [&](const std::string& file) {
+    torch::serialize::InputArchive archive;
+    archive.load_from(file);
+    c10::IValue value;
+    if (archive.try_read("state", value)) state = value.toStringRef();
+  });
+  return state.empty() ? read_state(run_dir) : state_of(nlohmann::json::parse(state));
+}
+
+void save(const Agent& agent, const RunState& s, const std::string& run_dir) {
+  torch::serialize::OutputArchive archive;
+  agent.save(archive);
+  archive.write("state", c10::IValue(state_json(s).dump()));
+  write_checkpoint(run_dir + "/agent.pt", [&](std::ostream& out) { archive.save_to(out); });
+  write_file_atomically(run_dir + "/state.json", state_json(s).dump(2));
 }
 
 // The walker's mean |forward speed - target| over the rollout's steps: a cheap training-time
@@ -124,8 +149,16 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
   }
 
   auto agent = make_expert_agent(spec, options, prototype->obs_dim(), prototype->act_dim());
-  RunState state = read_state(run_dir);
+  RunState state = checkpoint_state(run_dir);
   if (state.iteration > 0) agent->load_checkpoint(run_dir + "/agent.pt");
+  const std::string metrics_path = run_dir + "/metrics.csv";
+  if (world.is_root()) {
+    // What a kill after the checkpoint left: rows of iterations the resumed run redoes, a stale
+    // state.json.
+    truncate_metrics(metrics_path, state.iteration);
+    if (read_state(run_dir).iteration != state.iteration)
+      write_file_atomically(run_dir + "/state.json", state_json(state).dump(2));
+  }
   if (state.steps >= options.total_steps) return;
 
   VecEnv envs(*prototype, slice.count, options.env_threads);
@@ -149,7 +182,7 @@ void train_expert(const ExpertSpec& spec, const ExpertTrainOptions& options, con
   Ppo ppo(agent->policy_ptr(), agent->critic_ptr(), ppo_options);
   std::unique_ptr<CsvLog> log;
   if (world.is_root())
-    log = std::make_unique<CsvLog>(run_dir + "/metrics.csv",
+    log = std::make_unique<CsvLog>(metrics_path,
                                    std::vector<std::string>{"iteration", "steps", "episodes", "mean_return",
                                                             "mean_length", "fall_rate", "speed_error", "approx_kl",
                                                             "entropy", "value_loss", "seconds"});

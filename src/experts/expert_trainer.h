@@ -3,9 +3,13 @@
 // resumes from:
 //   run_dir/spec.json      the ExpertSpec
 //   run_dir/options.json   the training options
-//   run_dir/agent.pt       policy, critic and observation normaliser (written atomically)
-//   run_dir/state.json     iteration, steps, done (written atomically after agent.pt)
+//   run_dir/agent.pt       policy, critic and observation normaliser, and the run's state
+//                          ("state": state.json's JSON) they were saved in (written atomically)
+//   run_dir/state.json     iteration, steps, done, seconds (written atomically after agent.pt)
 //   run_dir/metrics.csv    one row per iteration
+// A resumed run goes by the state agent.pt holds, and drops the metrics rows past it. It is not
+// the uninterrupted run: its environments start new episodes, its Adam moments start from zero
+// and its streams restart from the iteration count (reproducibly).
 #pragma once
 
 #include <cstdint>

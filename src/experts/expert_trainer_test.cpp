@@ -90,6 +90,37 @@ TEST(ExpertTrainer, ResumesFromItsRunDirectoryAndLoadsForEvaluation) {
   EXPECT_THROW(load_expert(dir), std::runtime_error);
 }
 
+// The first column of every data row.
+std::vector<int> iterations(const std::string& csv) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<int> values;
+  while (std::getline(in, line)) values.push_back(std::stoi(line.substr(0, line.find(','))));
+  return values;
+}
+
+// What a SIGKILL can leave: metrics rows of iterations after the last checkpoint (one torn), and
+// agent.pt written but state.json not yet. The resumed run goes by the state agent.pt holds, redoes
+// the lost iterations and logs each iteration once.
+TEST(ExpertTrainer, AKilledRunResumesFromItsCheckpointWithOneMetricsRowPerIteration) {
+  torch::set_num_threads(1);
+  const std::string dir = (fs::temp_directory_path() / "vaegail_expert_killed").string();
+  fs::remove_all(dir);
+  ExpertSpec spec{"speed_test", {1.0}, -1.0, 5};
+  ExpertTrainOptions options = tiny(128);  // two iterations, the checkpoint after the second
+  options.checkpoint_every = 2;
+  train_expert(spec, options, dir);
+  std::ofstream(dir + "/metrics.csv", std::ios::app) << "3,192,1,1,1,0,0,0,0,0,9\n4,25";
+  std::ofstream(dir + "/state.json") << R"({"iteration": 1, "steps": 64, "done": false, "seconds": 0})";
+  options.total_steps = 192;
+  train_expert(spec, options, dir);
+  EXPECT_EQ(iterations(dir + "/metrics.csv"), (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(expert_steps(dir), 192);
+  EXPECT_TRUE(expert_done(dir));
+  fs::remove_all(dir);
+}
+
 TEST(ExpertTrainer, TrainsTheHumanoidsStylesOnOneHotConditionsAndCollectsThem) {
   torch::set_num_threads(1);
   const std::string dir = (fs::temp_directory_path() / "vaegail_humanoid_expert_run").string();
