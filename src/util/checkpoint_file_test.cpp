@@ -11,6 +11,7 @@
 #include "util/atomic_file.h"
 #include "util/test_child.h"
 #include "util/test_error.h"
+#include "util/test_small_fs.h"
 
 namespace vaegail {
 namespace {
@@ -84,6 +85,19 @@ TEST(CheckpointFile, AFailingDiskLeavesBothCheckpointsAndNoTemporaryFile) {
   FakeLoader loader;
   EXPECT_EQ(resume_checkpoint(latest, loader.load()).path, latest);
   EXPECT_EQ(loader.loaded, "checkpoint 2");
+  EXPECT_EQ(read_file(previous_checkpoint_for(latest)), "checkpoint 1");
+}
+
+// The same on a real full file system (ENOSPC wherever the tmpfs runs out); once there is room
+// again the rotation goes on from the checkpoint before the failure.
+TEST(CheckpointFile, AFullFileSystemLeavesTheCheckpointAndNoTemporaryFileUntilThereIsRoom) {
+  SmallFileSystem small(256 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  const std::string latest = small.path("latest.pt");
+  int saves = 0;
+  expect_refused_on_a_full_disk_then_saved(
+      small, latest, [&] { rotate_and_write(latest, saving("checkpoint " + std::to_string(++saves))); });
+  EXPECT_EQ(read_file(latest), "checkpoint 3");
   EXPECT_EQ(read_file(previous_checkpoint_for(latest)), "checkpoint 1");
 }
 

@@ -1,8 +1,15 @@
 #include "util/csv_log.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -27,9 +34,36 @@ CsvLog::CsvLog(const std::string& path, std::vector<std::string> columns)
   if (has_header && first != header)
     throw std::runtime_error(path + ": existing metrics have columns '" + first +
                              "', expected '" + header + "'");
-  out_.open(path, std::ios::app);
-  if (!out_) throw std::runtime_error(path + ": cannot open metrics log for writing");
-  if (!has_header) out_ << header << "\n" << std::flush;
+  existing.close();
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw std::runtime_error(path + ": cannot open metrics log for writing: " + std::strerror(errno));
+  try {
+    if (!has_header) append(header + "\n");
+  } catch (...) {
+    ::close(fd_);
+    throw;
+  }
+}
+
+CsvLog::~CsvLog() { ::close(fd_); }
+
+void CsvLog::append(const std::string& line) {
+  struct stat before;
+  if (::fstat(fd_, &before) != 0)
+    throw std::runtime_error(path_ + ": cannot append to metrics log: " + std::strerror(errno));
+  for (size_t done = 0; done < line.size();) {
+    const ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int cause = errno;
+      // Should the cut fail too, the torn row has no newline, and a resumed run drops it
+      // (gail/run_dir.h's truncate_metrics).
+      const bool cut = ::ftruncate(fd_, before.st_size) == 0;
+      throw std::runtime_error(path_ + ": cannot append to metrics log: " + std::strerror(cause) +
+                               (cut ? "" : " (a torn last row is left)"));
+    }
+    done += static_cast<size_t>(n);
+  }
 }
 
 void CsvLog::write(const Metrics& row) {
@@ -42,7 +76,7 @@ void CsvLog::write(const Metrics& row) {
     if (value == row.end()) throw std::logic_error(path_ + ": the row has no value for column '" + column + "'");
     line += (line.empty() ? "" : ",") + fmt::format("{:.8g}", value->second);
   }
-  out_ << line << "\n" << std::flush;
+  append(line + "\n");
 }
 
 namespace {

@@ -1,8 +1,10 @@
 // Metrics as CSV: a header of column names, then one row per call. Reopening an existing log
 // with the same columns appends (a resumed run continues its curve); different columns throw.
+// Every row goes to the file at once with write(2), each call checked: a row that does not fit (a
+// full disk, an I/O error) is cut off again, so that the rows before it stay whole, and the error
+// is one line naming the file and the cause.
 #pragma once
 
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -15,15 +17,19 @@ using Metrics = std::map<std::string, double>;
 class CsvLog {
  public:
   CsvLog(const std::string& path, std::vector<std::string> columns);
+  ~CsvLog();
+  CsvLog(const CsvLog&) = delete;
+  CsvLog& operator=(const CsvLog&) = delete;
   // A value for every column, written in the columns' order; a missing or unknown name throws
-  // std::logic_error naming it. Flushed at once so a killed run keeps its rows.
+  // std::logic_error naming it. In the file when this returns, so a killed run keeps its rows.
   void write(const Metrics& row);
   const std::string& path() const { return path_; }
 
  private:
+  void append(const std::string& line);
   std::string path_;
   std::vector<std::string> columns_;
-  std::ofstream out_;
+  int fd_ = -1;
 };
 
 // Drops the rows of a metrics CSV whose first column (the iteration or epoch) exceeds `last`:

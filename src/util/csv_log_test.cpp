@@ -6,6 +6,8 @@
 #include <filesystem>
 
 #include "util/atomic_file.h"
+#include "util/test_error.h"
+#include "util/test_small_fs.h"
 
 namespace vaegail {
 namespace {
@@ -56,6 +58,32 @@ TEST(CsvLog, AMissingOrUnknownNameThrowsNamingIt) {
   expect_rejected(log, {{"step", 1}, {"los", 2}}, "'los' is not one of its columns");
   EXPECT_EQ(read_file(path), "step,loss\n");
   std::remove(path.c_str());
+}
+
+// On a full file system a row is written in part, then refused: the part is cut off again, so
+// that the file still ends with the last whole row, and the row goes in once there is room.
+TEST(CsvLog, ARowThatDoesNotFitLeavesTheRowsBeforeWholeAndNamesTheFile) {
+  SmallFileSystem small(256 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  const std::string path = small.path("metrics.csv");
+  std::vector<std::string> columns;
+  Metrics row;
+  for (int i = 0; i < 2000; ++i) {  // a row of 2000 cells: ~22 KB, several pages
+    columns.push_back("c" + std::to_string(i));
+    row[columns.back()] = 0.123456789;
+  }
+  CsvLog log(path, columns);
+  log.write(row);
+  const std::string before = read_file(path);
+  small.fill_leaving(8192);
+  const std::string error = error_of([&] { log.write(row); });
+  EXPECT_TRUE(names_full_disk(error, path)) << error;
+  EXPECT_EQ(read_file(path), before);
+  small.make_room();
+  log.write(row);
+  const std::string after = read_file(path);
+  EXPECT_EQ(after.substr(0, before.size()), before);
+  EXPECT_EQ(after.substr(before.size()), before.substr(before.find('\n') + 1));  // the same row once more
 }
 
 TEST(SplitCsvLine, KeepsEmptyCellsIncludingATrailingOne) {
