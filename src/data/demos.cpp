@@ -71,18 +71,12 @@ void validate_episode(const Episode& e, const DemoHeader& h, const std::string& 
   check_finite(e.context, 1, where + "/context");
 }
 
-DemoWriter::DemoWriter(std::string path, DemoHeader header)
-    : path_(std::move(path)), tmp_path_(fresh_temporary_path(path_)), header_(std::move(header)) {
+DemoWriter::DemoWriter(std::string path, DemoHeader header) : path_(std::move(path)), header_(std::move(header)) {
   h5::silence_errors();
-  file_ = h5::create_file(tmp_path_, path_).release();
+  file_ = h5::create_file_in_memory(temporary_path_for(path_), path_).release();
 }
 
-DemoWriter::~DemoWriter() {
-  if (!committed_) {
-    close_file();
-    std::remove(tmp_path_.c_str());
-  }
-}
+DemoWriter::~DemoWriter() { close_file(); }
 
 void DemoWriter::close_file() {
   if (file_ >= 0) H5Fclose(file_);
@@ -141,13 +135,9 @@ void DemoWriter::commit() {
                       header_.body_mjcf.data(), path_);
     h5::write_string_attr(root, "body_sha256", sha256_hex(header_.body_mjcf));
   }
-  if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw DataError(h5::with_cause(path_ + ": cannot flush file"));
-  // Closing writes what HDF5 still caches: on a full disk this is where it fails.
-  const herr_t closed = H5Fclose(file_);
-  file_ = -1;
-  if (closed < 0) throw DataError(h5::with_cause(path_ + ": cannot close file"));
-  move_into_place(tmp_path_, path_);
-  committed_ = true;
+  const std::string image = h5::file_image(file_, path_);
+  close_file();
+  write_file_atomically(path_, image);
 }
 
 namespace {

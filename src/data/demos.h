@@ -69,9 +69,11 @@ struct DemoSet {
   std::vector<Episode> episodes;
 };
 
-// Writes to a temporary file beside `path`; commit() syncs it to disk and renames it into place.
-// Destroying an uncommitted writer (an exception, a kill) removes the temporary file and leaves
-// `path` as it was; so does a write that fails (a full disk), whose error names `path`.
+// Builds the file in memory (HDF5's core driver); commit() writes its bytes to `path` atomically
+// (util/atomic_file.h). Destroying an uncommitted writer (an exception, a kill) leaves `path` as
+// it was and nothing beside it; so does a write that fails (a full disk), whose error is one line
+// naming `path` and the cause. HDF5 never writes a disk itself: a full disk inside HDF5 left a
+// file it could not close, and its library crashed at exit closing it again.
 class DemoWriter {
  public:
   DemoWriter(std::string path, DemoHeader header);
@@ -87,12 +89,11 @@ class DemoWriter {
  private:
   void close_file();
 
-  std::string path_, tmp_path_;
+  std::string path_;
   DemoHeader header_;
   std::int64_t file_ = -1;
   int episodes_ = 0;
   std::int64_t steps_ = 0;
-  bool committed_ = false;
 };
 
 // Checks an episode against a header; throws DataError "where: field: problem".

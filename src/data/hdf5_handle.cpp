@@ -29,6 +29,24 @@ hid_t Handle::release() {
 
 void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
+namespace {
+// HDF5 describes a failed system call over more than a line: ctime's newline, the buffer's
+// address, sizes and offsets ("file write failed: time = ...\n, filename = ..., errno = 28, error
+// message = 'No space left on device', buf = ..."). Its own words and the system's message say it.
+std::string readable_cause(const std::string& description) {
+  const std::string tag = "error message = '";
+  const auto at = description.find(tag);
+  if (at == std::string::npos) {
+    std::string line = description;
+    std::replace(line.begin(), line.end(), '\n', ' ');
+    return line;
+  }
+  const auto start = at + tag.size();
+  return description.substr(0, description.find(':')) + ": " +
+         description.substr(start, description.find('\'', start) - start);
+}
+}  // namespace
+
 std::string with_cause(const std::string& what) {
   std::string cause;
   // Walking upward starts at the frame where HDF5 first noticed the problem.
@@ -38,7 +56,7 @@ std::string with_cause(const std::string& what) {
              return 0;
            },
            &cause);
-  return cause.empty() ? what : what + " (" + cause + ")";
+  return cause.empty() ? what : what + " (" + readable_cause(cause) + ")";
 }
 
 namespace {
@@ -51,17 +69,63 @@ void check(herr_t status, const std::string& what) {
 }
 // Beyond any name list or per-episode value the format stores; a larger size is corruption.
 constexpr hsize_t kMaxAttributeBytes = hsize_t(1) << 24;
+
+// Bob Jenkins' lookup3 hash (hashlittle, public domain), which HDF5 checksums its metadata with.
+std::uint32_t lookup3(const unsigned char* key, size_t length) {
+  const auto rot = [](std::uint32_t x, int k) { return (x << k) | (x >> (32 - k)); };
+  const auto word = [](const unsigned char* p) {
+    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+  };
+  std::uint32_t a, b, c;
+  a = b = c = 0xdeadbeef + static_cast<std::uint32_t>(length);
+  for (; length > 12; length -= 12, key += 12) {
+    a += word(key), b += word(key + 4), c += word(key + 8);
+    a -= c, a ^= rot(c, 4), c += b, b -= a, b ^= rot(a, 6), a += c, c -= b, c ^= rot(b, 8), b += a;
+    a -= c, a ^= rot(c, 16), c += b, b -= a, b ^= rot(a, 19), a += c, c -= b, c ^= rot(b, 4), b += a;
+  }
+  if (length == 0) return c;
+  unsigned char tail[12] = {};
+  std::copy(key, key + length, tail);
+  a += word(tail), b += word(tail + 4), c += word(tail + 8);
+  c ^= b, c -= rot(b, 14), a ^= c, a -= rot(c, 11), b ^= a, b -= rot(a, 25), c ^= b, c -= rot(b, 16);
+  a ^= c, a -= rot(c, 4), b ^= a, b -= rot(a, 14), c ^= b, c -= rot(b, 24);
+  return c;
+}
+
+// H5Fget_file_image (HDF5 1.10.8) clears the superblock's status flags, as for a closed file,
+// without computing the superblock's checksum again, so that the image fails to open
+// ("incorrect metadata checksum"). A superblock of version 2 or 3 (the 1.10 format) is 12 bytes
+// and 4 addresses, then the checksum of those.
+void checksum_superblock(std::string& image) {
+  if (image.size() < 12 || (image[8] != 2 && image[8] != 3)) return;
+  const size_t end = 12 + 4 * static_cast<size_t>(static_cast<unsigned char>(image[9]));
+  if (image.size() < end + 4) return;
+  const std::uint32_t sum = lookup3(reinterpret_cast<const unsigned char*>(image.data()), end);
+  for (size_t i = 0; i < 4; ++i) image[end + i] = static_cast<char>(sum >> (8 * i));
+}
 }  // namespace
 
-Handle create_file(const std::string& path, const std::string& where) {
+Handle create_file_in_memory(const std::string& name, const std::string& where) {
   Handle access = checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, where + ": property list");
+  check(H5Pset_fapl_core(access.get(), 1 << 20, /*backing_store=*/false), where + ": in-memory file");
   // The 1.10 format checksums all metadata; files need HDF5 1.10 or later (h5py >= 2.7) to read.
   check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_V110), where + ": file format");
   // The root group is created with the file: untimed like every other object.
   Handle creation = checked(H5Pcreate(H5P_FILE_CREATE), H5Pclose, where + ": property list");
   check(H5Pset_obj_track_times(creation.get(), false), where + ": untimed root group");
-  return checked(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, creation.get(), access.get()), H5Fclose,
-                 where + ": cannot create file (is the folder there and writable?)");
+  return checked(H5Fcreate(name.c_str(), H5F_ACC_TRUNC, creation.get(), access.get()), H5Fclose,
+                 where + ": cannot create file");
+}
+
+std::string file_image(hid_t file, const std::string& where) {
+  check(H5Fflush(file, H5F_SCOPE_GLOBAL), where + ": cannot flush file");
+  const ssize_t size = H5Fget_file_image(file, nullptr, 0);
+  if (size < 0) throw DataError(with_cause(where + ": cannot take the file's image"));
+  std::string image(static_cast<size_t>(size), '\0');
+  if (H5Fget_file_image(file, image.data(), image.size()) != size)
+    throw DataError(with_cause(where + ": cannot take the file's image"));
+  checksum_superblock(image);
+  return image;
 }
 
 Handle create_group(hid_t parent, const std::string& name, const std::string& where) {

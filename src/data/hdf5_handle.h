@@ -42,7 +42,11 @@ std::string with_cause(const std::string& what);
 
 // Writing. `where` names the object in error messages. Objects carry no creation or
 // modification times, so that the same episodes make the same bytes.
-Handle create_file(const std::string& path, const std::string& where);
+// A file in memory (the core driver, no backing store), which file_image turns into bytes to
+// write; `name` only tells open files apart.
+Handle create_file_in_memory(const std::string& name, const std::string& where);
+// The bytes of the file as a disk would hold them once it is closed.
+std::string file_image(hid_t file, const std::string& where);
 Handle create_group(hid_t parent, const std::string& name, const std::string& where);
 void write_dataset(hid_t parent, const std::string& name, hid_t mem_type, hid_t file_type,
                    const std::vector<hsize_t>& dims, const void* data, const std::string& where);
