@@ -16,6 +16,7 @@
 #include "data/demos_test_support.h"
 #include "data/hdf5_handle.h"
 #include "util/atomic_file.h"
+#include "util/test_small_fs.h"
 
 namespace vaegail {
 namespace {
@@ -77,6 +78,16 @@ TEST(Demos, UncommittedWriterLeavesNothingBehind) {
   }
   EXPECT_FALSE(std::filesystem::exists(path));
   EXPECT_FALSE(std::filesystem::exists(temporary_path_for(path)));
+}
+
+// On a full file system HDF5's failure is one line naming the file and the cause; neither a
+// temporary nor a half file is left, and the file before stays as it was.
+TEST(Demos, AFileOnAFullDiskIsRefusedInOneLineAndTheOneBeforeKept) {
+  SmallFileSystem small(512 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  const std::string path = small.path("demos.h5");
+  expect_refused_on_a_full_disk_then_saved(small, path, [&] { write_toy_file_at(path); });
+  EXPECT_EQ(toy_contents_difference(read_demos(path)), "");
 }
 
 TEST(Demos, WriterRejectsMalformedEpisodes) {

@@ -74,11 +74,15 @@ inline std::string temp_demo_path(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("vaegail_demos_" + name + ".h5")).string();
 }
 
-inline std::string write_toy_file(const std::string& name) {
-  const std::string path = temp_demo_path(name);
+inline void write_toy_file_at(const std::string& path) {
   DemoWriter w(path, toy_header());
   for (int i = 0; i < 2; ++i) w.append(toy_file_episode(i));
   w.commit();
+}
+
+inline std::string write_toy_file(const std::string& name) {
+  const std::string path = temp_demo_path(name);
+  write_toy_file_at(path);
   return path;
 }
 

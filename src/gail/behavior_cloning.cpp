@@ -7,7 +7,7 @@
 
 #include "gail/gail_demos.h"
 #include "gail/run_dir.h"
-#include "util/atomic_file.h"
+#include "util/checkpoint_file.h"
 #include "util/csv_log.h"
 #include "util/rng.h"
 #include "vae/demo_dataset.h"
@@ -64,7 +64,7 @@ void BehaviorCloning::save_checkpoint(const std::string& path) const {
   root.write("agent", agent);
   root.write("optimizer", optimizer);
   root.write("epoch", torch::tensor(static_cast<int64_t>(epoch_)));
-  write_atomically(path, [&](const std::string& tmp) { root.save_to(tmp); });
+  write_checkpoint(path, [&](std::ostream& out) { root.save_to(out); });
 }
 
 void BehaviorCloning::load_checkpoint(const std::string& path) {

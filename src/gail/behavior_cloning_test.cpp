@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "gail/test_support.h"
+#include "util/test_small_fs.h"
 
 namespace vaegail {
 namespace {
@@ -33,6 +34,21 @@ TEST(BehaviorCloning, RecoversALinearGaussianPolicy) {
   // The Gaussian's own negative log-likelihood per 2-d action is log(2πe)·1 + 2·log(0.05) ≈ -3.15.
   EXPECT_LT(bc.nll(x, a), -2.9);
   EXPECT_LT(bc.nll(x, a), start);
+}
+
+// A checkpoint on a full file system: refused in one line, the one before kept and loadable.
+TEST(BehaviorCloning, ACheckpointOnAFullDiskIsRefusedAndTheOneBeforeStillLoads) {
+  SmallFileSystem small(512 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  BcOptions o;
+  o.hidden = {16};
+  BehaviorCloning bc(torch::randn({50, 3}), torch::randn({50, 2}), o);
+  bc.train_epoch();
+  const std::string path = small.path("latest.pt");
+  expect_refused_on_a_full_disk_then_saved(small, path, [&] { bc.save_checkpoint(path); });
+  BehaviorCloning loaded(torch::randn({50, 3}), torch::randn({50, 2}), o);
+  loaded.load_checkpoint(path);
+  EXPECT_EQ(loaded.epoch(), 1);
 }
 
 }  // namespace

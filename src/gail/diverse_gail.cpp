@@ -11,7 +11,7 @@
 #include "rl/rollout.h"
 #include "rl/trpo.h"
 #include "rl/update_batch.h"
-#include "util/atomic_file.h"
+#include "util/checkpoint_file.h"
 #include "util/csv_log.h"
 #include "util/malloc_tuning.h"
 #include "util/rng.h"
@@ -175,7 +175,7 @@ void GailTrainer::save_checkpoint() const {
   root.write("critic_optimizer", critic_optimizer);
   root.write("iteration", torch::tensor(static_cast<int64_t>(iteration_)));
   root.write("seconds", torch::tensor(seconds_before_, torch::kFloat64));
-  write_atomically(checkpoint_path(), [&](const std::string& tmp) { root.save_to(tmp); });
+  write_checkpoint(checkpoint_path(), [&](std::ostream& out) { root.save_to(out); });
 }
 
 void GailTrainer::load_checkpoint() {

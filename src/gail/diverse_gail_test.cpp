@@ -9,6 +9,7 @@
 #include "env/walker.h"
 #include "gail/test_support.h"
 #include "util/atomic_file.h"
+#include "util/test_small_fs.h"
 
 namespace vaegail {
 namespace {
@@ -84,6 +85,35 @@ TEST_F(DiverseGailTest, ResumedRunEqualsTheUninterruptedOne) {
     for (const auto& [name, value] : a) EXPECT_TRUE(torch::equal(value, b.at(name))) << name;
     EXPECT_EQ(metrics_without_seconds(whole.metrics_path()), metrics_without_seconds(resumed.metrics_path()));
   }
+}
+
+// A full file system mid-run: the iteration ends in one line naming the file it could not write,
+// no temporary file is left and the checkpoint before is kept; the same run started again once
+// there is room resumes from it and learns what the uninterrupted run learns.
+TEST_F(DiverseGailTest, AFullDiskStopsTheRunInOneLineAndTheRerunEqualsTheUninterruptedOne) {
+  SmallFileSystem small(4 * 1024 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  auto whole = trainer("whole", options);
+  whole.train();
+  const std::string run = small.path("run");
+  {
+    GailTrainer stopped(demos, vae, *env, options, run);
+    stopped.iterate();
+    const std::string checkpoint = read_file(stopped.checkpoint_path());
+    small.fill_leaving(0);
+    const std::string error = error_of([&] { stopped.iterate(); });
+    EXPECT_TRUE(names_full_disk(error, stopped.checkpoint_path()) || names_full_disk(error, stopped.metrics_path()))
+        << error;
+    EXPECT_EQ(temporary_files_under(run), std::vector<std::string>{});
+    EXPECT_TRUE(read_file(stopped.checkpoint_path()) == checkpoint);
+  }
+  small.make_room();
+  auto resumed = GailTrainer(demos, vae, *env, options, run);
+  EXPECT_EQ(resumed.iteration(), 1);
+  EXPECT_EQ(resumed.train(), 2);
+  const auto a = state_of(whole), b = state_of(resumed);
+  for (const auto& [name, value] : a) EXPECT_TRUE(torch::equal(value, b.at(name))) << name;
+  EXPECT_EQ(metrics_without_seconds(whole.metrics_path()), metrics_without_seconds(resumed.metrics_path()));
 }
 
 // Both players learn: the policy takes a TRPO step inside the trust region every iteration, and the

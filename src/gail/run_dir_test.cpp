@@ -11,6 +11,7 @@
 #include "util/atomic_file.h"
 #include "util/checkpoint_file.h"
 #include "util/test_child.h"
+#include "util/test_small_fs.h"
 
 namespace vaegail {
 namespace {
@@ -69,6 +70,20 @@ TEST(RunDir, AnOlderConfigResumesWithTheValuesItWasReadWith) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("/discriminator_minibatches"), std::string::npos) << e.what();
   }
+}
+
+// A run's config.json on a full file system: refused in one line, the config before kept.
+TEST(RunDir, AConfigOnAFullDiskIsRefusedAndTheOneBeforeKept) {
+  SmallFileSystem small(256 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  const std::string path = small.path("config.json");
+  GailOptions options;
+  options.iterations = 1;
+  expect_refused_on_a_full_disk_then_saved(small, path, [&] {
+    ++options.iterations;  // a resumable key: each call rewrites the file
+    check_or_write_config(path, options, {"iterations"});
+  });
+  EXPECT_EQ(nlohmann::json::parse(read_file(path)).at("iterations"), 4);
 }
 
 TEST(RunDir, ACheckpointOnAFailingDiskEndsInOneLineAndKeepsBothCheckpoints) {

@@ -12,6 +12,7 @@
 #include "gail/test_support.h"
 #include "util/checkpoint_file.h"
 #include "util/test_error.h"
+#include "util/test_small_fs.h"
 #include "vae/toy_trajectories.h"
 #include "vae/trained_vae.h"
 #include "vae/vae_trainer.h"
@@ -128,6 +129,22 @@ TEST_F(WeightsExportTest, GailAndBcExportsActExactlyAsTheirCheckpointsAndCarryTh
                       load_gail_agent(path("plain.pt"), D, A, vae::TrajectoryVae(nullptr), torch::kCPU));
   expect_same_actions(load_bc_agent(path("bc"), D, A, torch::kCPU), load_bc_agent(path("bc.pt"), D, A, torch::kCPU));
   EXPECT_LT(fs::file_size(path("plain.pt")), fs::file_size(path("plain/checkpoints/latest.pt")));
+}
+
+// `vaegail export` onto a full file system: refused in one line, the export before kept.
+TEST_F(WeightsExportTest, AnExportOnAFullDiskIsRefusedAndTheOneBeforeStillLoads) {
+  SmallFileSystem small(512 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  WalkerOptions w;
+  w.episode_length = 8;
+  const WalkerEnv env(w);
+  BcOptions bc;
+  bc.hidden = {16};
+  bc.epochs = 1;
+  train_bc(random_walker_demos(env, 4), bc, path("bc"));
+  const std::string weights = small.path("bc.pt");
+  expect_refused_on_a_full_disk_then_saved(small, weights, [&] { export_weights(path("bc"), weights); });
+  load_bc_agent(weights, env.obs_dim(), env.act_dim(), torch::kCPU);
 }
 
 TEST_F(WeightsExportTest, ABadWeightsFileIsOneLineNamingIt) {

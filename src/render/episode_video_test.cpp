@@ -12,6 +12,7 @@ extern "C" {
 #include "data/record.h"
 #include "env/registry.h"
 #include "render/mp4_writer.h"
+#include "util/test_small_fs.h"
 
 namespace vaegail::render {
 namespace {
@@ -142,6 +143,24 @@ TEST_F(EpisodeVideo, AnUnfinishedVideoLeavesNoFile) {
   EXPECT_FALSE(fs::exists(path));
   EXPECT_TRUE(fs::is_empty(dir));
   EXPECT_THROW(Mp4Writer((dir / "odd.mp4").string(), {63, 48, 10}), RenderError);
+}
+
+// A video on a full file system: FFmpeg's failure is one line naming the file and the cause, no
+// temporary file is left and the video before stays as it was and plays.
+TEST_F(EpisodeVideo, AVideoOnAFullDiskIsRefusedInOneLineAndTheOneBeforeKept) {
+  SmallFileSystem small(1024 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  const std::string path = small.path("video.mp4");
+  std::vector<std::uint8_t> noise(64 * 48 * 3);
+  expect_refused_on_a_full_disk_then_saved(small, path, [&] {
+    Mp4Writer video(path, {64, 48, 10});
+    for (int frame = 0; frame < 20; ++frame) {
+      for (auto& byte : noise) byte = static_cast<std::uint8_t>(std::rand());  // poorly compressible
+      video.write(noise.data());
+    }
+    video.finish();
+  });
+  EXPECT_EQ(decode(path).frames, 20);
 }
 
 }  // namespace

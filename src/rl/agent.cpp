@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "util/atomic_file.h"
+#include "util/checkpoint_file.h"
 
 namespace vaegail {
 
@@ -43,7 +43,7 @@ torch::Tensor Agent::input(const torch::Tensor& observations, const torch::Tenso
 void Agent::save_checkpoint(const std::string& path) const {
   torch::serialize::OutputArchive archive;
   save(archive);
-  write_atomically(path, [&](const std::string& tmp) { archive.save_to(tmp); });
+  write_checkpoint(path, [&](std::ostream& out) { archive.save_to(out); });
 }
 
 void Agent::load_checkpoint(const std::string& path) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "rl/test_support.h"
+#include "util/test_small_fs.h"
 
 namespace vaegail {
 namespace {
@@ -43,6 +44,16 @@ TEST(Agent, CheckpointRestoresPolicyCriticAndNormaliser) {
   EXPECT_TRUE(torch::equal(saved->policy().distribution(input).mean, loaded->policy().distribution(input).mean));
   EXPECT_TRUE(torch::equal(saved->critic().forward(input), loaded->critic().forward(input)));
   EXPECT_DOUBLE_EQ(loaded->normalizer().count(), 10.0);
+}
+
+// An expert's checkpoint (PPO) on a full file system: refused in one line, the one before kept.
+TEST(Agent, ACheckpointOnAFullDiskIsRefusedAndTheOneBeforeStillLoads) {
+  SmallFileSystem small(512 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  const std::string path = small.path("agent.pt");
+  auto agent = Agent::make_gaussian(small_agent());
+  expect_refused_on_a_full_disk_then_saved(small, path, [&] { agent->save_checkpoint(path); });
+  Agent::make_gaussian(small_agent())->load_checkpoint(path);
 }
 
 }  // namespace

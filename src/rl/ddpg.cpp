@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "util/atomic_file.h"
+#include "util/checkpoint_file.h"
 #include "util/rng.h"
 
 namespace vaegail {
@@ -149,11 +149,9 @@ DdpgStats Ddpg::train(Env& env, int64_t steps) {
 }
 
 void Ddpg::save_actor(const std::string& path) {
-  write_atomically(path, [&](const std::string& tmp) {
-    torch::serialize::OutputArchive archive;
-    actor_->save(archive);
-    archive.save_to(tmp);
-  });
+  torch::serialize::OutputArchive archive;
+  actor_->save(archive);
+  write_checkpoint(path, [&](std::ostream& out) { archive.save_to(out); });
 }
 
 void Ddpg::load_actor(const std::string& path) {

@@ -5,6 +5,7 @@
 #include <ATen/CPUGeneratorImpl.h>
 
 #include "rl/test_support.h"
+#include "util/test_small_fs.h"
 
 namespace vaegail {
 namespace {
@@ -85,6 +86,17 @@ TEST(Ddpg, ASavedActorActsTheSameWhenLoadedAndAStrangeFileIsRefused) {
   options.actor_hidden = {8};
   Ddpg other_shape(4, box, options);
   EXPECT_THROW(other_shape.load_actor(path), std::runtime_error);
+}
+
+// The arm expert's actor on a full file system: refused in one line, the one before kept.
+TEST(Ddpg, AnActorSavedOnAFullDiskIsRefusedAndTheOneBeforeStillLoads) {
+  SmallFileSystem small(512 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  const BoxSpec box{{"a", "b"}, {-1.0, 0.0}, {1.0, 2.0}};
+  Ddpg ddpg(4, box, DdpgOptions{});
+  const std::string path = small.path("actor.pt");
+  expect_refused_on_a_full_disk_then_saved(small, path, [&] { ddpg.save_actor(path); });
+  ddpg.load_actor(path);
 }
 
 TEST(Ddpg, SolvesThePointMassTaskWithinAFixedBudget) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "util/atomic_file.h"
+#include "util/checkpoint_file.h"
 #include "util/csv_log.h"
 #include "util/progress.h"
 #include "util/rng.h"
@@ -226,7 +227,7 @@ void VaeTrainer::save_checkpoint(const std::string& path) {
   archive.write("epoch", c10::IValue(static_cast<int64_t>(epoch_)));
   archive.write("seed", c10::IValue(static_cast<int64_t>(options_.seed)));
   archive.write("config", c10::IValue(config_.to_json()));
-  write_atomically(path, [&](const std::string& tmp) { archive.save_to(tmp); });
+  write_checkpoint(path, [&](std::ostream& out) { archive.save_to(out); });
 }
 
 void VaeTrainer::load_checkpoint(const std::string& path) {

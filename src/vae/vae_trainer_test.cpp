@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "util/atomic_file.h"
+#include "util/test_small_fs.h"
 #include "vae/toy_trajectories.h"
 
 namespace vaegail::vae {
@@ -184,6 +185,25 @@ TEST_F(VaeTrainerTest, ResumeReproducesTheUninterruptedRun) {
   EXPECT_EQ(without_seconds(read_file((root_ / "resumed" / "metrics.csv").string())),
             without_seconds(read_file((root_ / "straight" / "metrics.csv").string())));
   EXPECT_EQ(count_lines(root_ / "resumed" / "metrics.csv"), 4);
+}
+
+// A checkpoint on a full file system: refused in one line, the one before kept; a new trainer (the
+// rerun command) resumes from it once there is room.
+TEST_F(VaeTrainerTest, ACheckpointOnAFullDiskIsRefusedAndTheRunResumesFromTheOneBefore) {
+  SmallFileSystem small(1024 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  TrainerOptions o = options("run", 2);
+  o.run_dir = small.path("run");
+  const auto train = toy_dataset(4, 6, false);
+  {
+    VaeTrainer trainer(tiny_config(), o, train, {});
+    trainer.train_epoch();
+    expect_refused_on_a_full_disk_then_saved(small, trainer.checkpoint_path(),
+                                             [&] { trainer.save_checkpoint(trainer.checkpoint_path()); });
+  }
+  VaeTrainer resumed(tiny_config(), o, train, {});
+  EXPECT_EQ(resumed.epoch(), 1);
+  EXPECT_EQ(resumed.train().size(), 1u);
 }
 
 TEST_F(VaeTrainerTest, ResumeRefusesAnotherConfig) {
