@@ -25,6 +25,7 @@
 #include "util/csv_log.h"
 #include "util/json_file.h"
 #include "util/progress.h"
+#include "util/run_lock.h"
 
 namespace vaegail::cli {
 
@@ -117,7 +118,7 @@ void run_train_ppo(const ExpertTrainFlags& f) {
   if (f.steps > 0) options.total_steps = f.steps;
   options.device = f.device;
   const auto specs = selected(ppo_expert_specs(f, config), f.only);
-  fs::create_directories(f.out_dir);
+  const RunLock lock = lock_run_directory(f.out_dir);  // one for all the experts; creates the directory
   std::printf("training %zu expert(s) into %s, %lld steps each, %d at a time\n", specs.size(), f.out_dir.c_str(),
               static_cast<long long>(options.total_steps), f.jobs);
   std::vector<std::string> ids;
@@ -161,7 +162,7 @@ void run_train_arm(const ExpertTrainFlags& f) {
   }
   if (f.steps > 0) options.total_steps = f.steps;
   const auto specs = selected(arm_expert_specs(f.count, f.seed), f.only);
-  fs::create_directories(f.out_dir);
+  const RunLock lock = lock_run_directory(f.out_dir);  // one for all the experts; creates the directory
   std::printf("training %zu reaching expert(s) into %s, %lld steps each, %d at a time\n", specs.size(),
               f.out_dir.c_str(), static_cast<long long>(options.total_steps), f.jobs);
   std::vector<std::string> ids;
@@ -317,6 +318,7 @@ struct CollectFlags {
 };
 
 void run_collect(CollectFlags f) {
+  const RunLock lock = lock_output_file(f.out);
   if (fs::exists(f.out) && !f.force) throw std::runtime_error(f.out + ": exists (pass --force to replace it)");
   std::vector<std::string> passing;
   for (const auto& path : f.passing) {  // experts that passed the bar in `experts eval --json` reports

@@ -10,6 +10,7 @@
 #include "util/checkpoint_file.h"
 #include "util/csv_log.h"
 #include "util/rng.h"
+#include "util/run_lock.h"
 #include "vae/demo_dataset.h"
 
 namespace vaegail {
@@ -81,6 +82,7 @@ void BehaviorCloning::load_checkpoint(const std::string& path) {
 
 void train_bc(const DemoSet& demos, const BcOptions& options, const std::string& run_dir,
               const std::function<void(const BcEpoch&)>& on_epoch) {
+  const RunLock lock = lock_run_directory(run_dir);
   fs::create_directories(run_dir + "/checkpoints");
   check_or_write_config(run_dir + "/config.json", options, {"epochs", "device"});
   const auto split = vae::split_demos(demos, options.seed);

@@ -60,7 +60,8 @@ struct BcEpoch {
 };
 
 // Trains on the demonstrations' training split (vae/demo_dataset.h's split_demos: the
-// held-out episodes, or a seeded 10%, validate) until options.epochs, resuming run_dir.
+// held-out episodes, or a seeded 10%, validate) until options.epochs, resuming run_dir, which it
+// holds meanwhile (util/run_lock.h: a second trainer on it is refused).
 void train_bc(const DemoSet& demos, const BcOptions& options, const std::string& run_dir,
               const std::function<void(const BcEpoch&)>& on_epoch = nullptr);
 

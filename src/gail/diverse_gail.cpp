@@ -133,6 +133,7 @@ GailTrainer::GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env
   // Under mpirun every rank trains its share of the environments; rank 0 alone writes.
   const World& world = World::get();
   slice_ = EnvSlice::of_world(options_.num_envs);
+  lock_ = lock_run_directory(run_dir_);  // rank 0's: the ranks are one writer
   if (world.is_root()) {
     fs::create_directories(run_dir_ + "/checkpoints");
     check_or_write_config(run_dir_ + "/config.json", options_, kResumableKeys);

@@ -61,6 +61,7 @@
 #include "rl/agent.h"
 #include "rl/trpo.h"
 #include "util/csv_log.h"
+#include "util/run_lock.h"
 #include "vae/imitation.h"
 #include "vae/trajectory_vae.h"
 
@@ -95,7 +96,8 @@ class GailTrainer {
  public:
   // `vae` is required in diverse mode and ignored in plain mode. Checks that the
   // demonstrations, the environment and the VAE agree (std::invalid_argument, one line),
-  // creates or resumes run_dir.
+  // creates or resumes run_dir, which it holds for its life (util/run_lock.h: a second trainer
+  // on it is refused).
   GailTrainer(const DemoSet& demos, vae::TrajectoryVae vae, const Env& prototype, GailOptions options,
               std::string run_dir);
 
@@ -119,6 +121,7 @@ class GailTrainer {
 
   GailOptions options_;
   std::string run_dir_;
+  RunLock lock_;
   GailDemos demos_;
   EnvSlice slice_;  // this rank's share of the run's num_envs environments
   std::unique_ptr<VecEnv> envs_;

@@ -116,6 +116,13 @@ TEST_F(DiverseGailTest, AFullDiskStopsTheRunInOneLineAndTheRerunEqualsTheUninter
   EXPECT_EQ(metrics_without_seconds(whole.metrics_path()), metrics_without_seconds(resumed.metrics_path()));
 }
 
+// One run directory, one writer: a second trainer on it is refused in one line naming the holder.
+TEST_F(DiverseGailTest, ASecondTrainerOnTheRunDirectoryIsRefused) {
+  const auto first = trainer("held", options);
+  EXPECT_EQ(error_of([&] { trainer("held", options); }),
+            (dir / "held").string() + ": in use by process " + std::to_string(::getpid()) + " (another vaegail run)");
+}
+
 // Both players learn: the policy takes a TRPO step inside the trust region every iteration, and the
 // discriminator's steps make it tell policy samples from demonstrations better. The control is the same
 // run with a discriminator that does not learn: iteration 2 rolls out the same policy in both runs (its

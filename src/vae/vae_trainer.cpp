@@ -115,6 +115,7 @@ VaeTrainer::VaeTrainer(const VaeConfig& config, TrainerOptions options, Trajecto
       model_->parameters(),
       torch::optim::AdamOptions(config_.learning_rate).weight_decay(config_.weight_decay));
 
+  lock_ = lock_run_directory(options_.run_dir);
   std::filesystem::create_directories(std::filesystem::path(options_.run_dir) / "checkpoints");
   if (std::filesystem::exists(checkpoint_path())) load_checkpoint(checkpoint_path());
   truncate_metrics(metrics_path(), epoch_);  // rows past the checkpoint: the resumed run redoes them

@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "util/run_lock.h"
 #include "vae/trained_vae.h"
 #include "vae/trajectory_vae.h"
 #include "vae/vae_config.h"
@@ -63,7 +64,8 @@ struct EpochMetrics {
 class VaeTrainer {
  public:
   // Builds the model (seeded), fits its normalisation on `train`, and resumes from
-  // run_dir/checkpoints/latest.pt when that exists (its config must equal `config`).
+  // run_dir/checkpoints/latest.pt when that exists (its config must equal `config`). Holds
+  // run_dir for its life (util/run_lock.h: a second trainer on it is refused).
   VaeTrainer(const VaeConfig& config, TrainerOptions options, TrajectoryDataset train,
              TrajectoryDataset val);
 
@@ -87,6 +89,7 @@ class VaeTrainer {
  private:
   VaeConfig config_;
   TrainerOptions options_;
+  RunLock lock_;
   TrajectoryDataset train_, val_;
   TrajectoryVae model_{nullptr};
   std::unique_ptr<torch::optim::Adam> optimizer_;

@@ -206,6 +206,13 @@ TEST_F(VaeTrainerTest, ACheckpointOnAFullDiskIsRefusedAndTheRunResumesFromTheOne
   EXPECT_EQ(resumed.train().size(), 1u);
 }
 
+// One run directory, one trainer: a second is refused while the first holds it.
+TEST_F(VaeTrainerTest, ASecondTrainerOnTheRunDirectoryIsRefused) {
+  const VaeTrainer first(tiny_config(), options("run", 1), toy_dataset(4, 6, false), {});
+  EXPECT_EQ(error_of([&] { VaeTrainer(tiny_config(), options("run", 1), toy_dataset(4, 6, false), {}); }),
+            options("run", 1).run_dir + ": in use by process " + std::to_string(::getpid()) + " (another vaegail run)");
+}
+
 TEST_F(VaeTrainerTest, ResumeRefusesAnotherConfig) {
   { VaeTrainer(tiny_config(), options("run", 1), toy_dataset(4, 6, false), {}).train(); }
   auto other = tiny_config();
