@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 #include <fmt/format.h>
 
 #include "util/world.h"
@@ -23,7 +24,14 @@ Progress::Progress(std::string label, std::int64_t total, std::string unit)
       // Under mpirun the ranks share one terminal; rank 0 speaks for the run.
       quiet_(!World::get().is_root()) {}
 
-Progress::~Progress() { finish(); }
+// The final bar (finish()), unless an exception is ending the job: then a bar in progress is
+// cleared, so that the error's one line stands alone on stderr.
+Progress::~Progress() {
+  if (std::uncaught_exceptions() == 0)
+    finish();
+  else if (tty_ && !quiet_ && !finished_)
+    std::fputs("\r\033[K", stderr);
+}
 
 void Progress::advance(std::int64_t n) { set(done_ + n); }
 

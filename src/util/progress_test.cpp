@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 namespace vaegail {
 namespace {
 
@@ -21,6 +23,24 @@ TEST(ProgressTest, FormatsDurations) {
   EXPECT_EQ(Progress::format_duration(65), "01:05");
   EXPECT_EQ(Progress::format_duration(3725), "1:02:05");
   EXPECT_EQ(Progress::format_duration(-1), "--:--");
+}
+
+// A job ended by an error draws no final bar claiming it done: the error's line stands alone.
+TEST(ProgressTest, AnErrorEndsTheJobWithoutItsFinalBar) {
+  ::testing::internal::CaptureStderr();  // not a terminal: only the final bar would be drawn here
+  try {
+    Progress progress("job", 3);
+    progress.set(1);
+    throw std::runtime_error("disk full");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+  ::testing::internal::CaptureStderr();
+  {
+    Progress progress("job", 3);
+    progress.set(3);
+  }
+  EXPECT_NE(::testing::internal::GetCapturedStderr().find("job [########################] 3/3"), std::string::npos);
 }
 
 }  // namespace
