@@ -61,7 +61,7 @@ Mp4Writer::Mp4Writer(std::string path, VideoFormat format)
     if ((error = avcodec_parameters_from_context(stream->codecpar, encoder_)) < 0) fail("stream parameters", error);
     stream->time_base = encoder_->time_base;
     stream->avg_frame_rate = encoder_->framerate;
-    if ((error = avio_open(&muxer_->pb, tmp_path_.c_str(), AVIO_FLAG_WRITE)) < 0) fail("opening " + tmp_path_, error);
+    if ((error = avio_open(&muxer_->pb, tmp_path_.c_str(), AVIO_FLAG_WRITE)) < 0) fail("cannot open for writing", error);
     AVDictionary* options = nullptr;
     av_dict_set(&options, "movflags", "+faststart", 0);  // index first: browsers play while loading
     error = avformat_write_header(muxer_, &options);
@@ -123,7 +123,7 @@ void Mp4Writer::drain(bool flushing) {
     if (error < 0) fail("encoding", error);
     av_packet_rescale_ts(packet_, encoder_->time_base, muxer_->streams[stream_]->time_base);
     packet_->stream_index = stream_;
-    if ((error = av_interleaved_write_frame(muxer_, packet_)) < 0) fail("writing " + tmp_path_, error);
+    if ((error = av_interleaved_write_frame(muxer_, packet_)) < 0) fail("write failed", error);
   }
 }
 
@@ -133,8 +133,8 @@ void Mp4Writer::finish() {
   int error = avcodec_send_frame(encoder_, nullptr);
   if (error < 0) fail("flushing the encoder", error);
   drain(true);
-  if ((error = av_write_trailer(muxer_)) < 0) fail("writing the MP4 index of " + tmp_path_, error);
-  if ((error = avio_closep(&muxer_->pb)) < 0) fail("closing " + tmp_path_, error);
+  if ((error = av_write_trailer(muxer_)) < 0) fail("cannot write the MP4 index", error);
+  if ((error = avio_closep(&muxer_->pb)) < 0) fail("write failed", error);
   move_into_place(tmp_path_, path_);  // removes tmp_path_ itself on failure
   finished_ = true;
   close();
