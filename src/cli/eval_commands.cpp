@@ -86,6 +86,13 @@ std::vector<eval::NamedPolicy> load_policies(const vae::TrajectoryVae& model, co
   return policies;
 }
 
+void add_start_seed_option(CLI::App& command, vae::ImitationOptions& rollout) {
+  command.add_option("--start-seed", rollout.start_seed,
+                     "evaluation seed: 0, each rollout from its demonstration's own initial state (the published "
+                     "figures); else from a fresh initial state drawn with this seed (the spread over seeds)")
+      ->capture_default_str();
+}
+
 void add_eval_input_options(CLI::App& command, EvalInputs& inputs) {
   command.add_option("--demos", inputs.demos, "demonstration file (.h5); its body and task are rebuilt from it")
       ->required();
@@ -134,7 +141,12 @@ void run_eval_walker(const EvalWalkerFlags& f) {
   std::vector<eval::ImitationRow> training_rows;
   std::copy_if(rows.begin(), rows.end(), std::back_inserter(training_rows),
                [](const eval::ImitationRow& r) { return !r.held_out; });
-  const auto table = eval::summary_table(eval::summarize(rows)) + "\nBy target speed:\n\n" +
+  const std::string starts =
+      f.rollout.start_seed == 0
+          ? ""
+          : fmt::format("Starts: fresh initial states (start seed {}), not the demonstrations' own.\n\n",
+                        f.rollout.start_seed);
+  const auto table = starts + eval::summary_table(eval::summarize(rows)) + "\nBy target speed:\n\n" +
                      eval::summary_table(eval::summarize(training_rows, /*by_target=*/true)) + rule + modes;
   write_file_atomically(f.out_dir + "/imitation.csv", eval::rows_csv(rows));
   write_file_atomically(f.out_dir + "/summary.md", table);
@@ -168,6 +180,7 @@ void add_eval_walker(CLI::App& eval) {
   c->add_option("--out-dir", f->out_dir, "where the CSV, the table and the PNGs go")->required();
   c->add_option("--envs", f->rollout.num_envs, "environments stepped together")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  add_start_seed_option(*c, f->rollout);
   c->add_option("--videos", f->videos, "also write this many MP4s to OUT_DIR/videos: a demonstration beside each "
                                        "policy's imitation")
       ->check(CLI::Range(0, 1 << 20))->capture_default_str();

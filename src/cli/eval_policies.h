@@ -30,6 +30,8 @@ struct EvalInputs {
   PolicyRuns runs;
 };
 void add_eval_input_options(CLI::App& command, EvalInputs& inputs);
+// --start-seed: the evaluation seed of the rollouts' starts (vae::ImitationOptions::start_seed).
+void add_start_seed_option(CLI::App& command, vae::ImitationOptions& rollout);
 
 // What an evaluation of imitations starts from: the demonstrations, the VAE that encodes them (in
 // eval mode), the environment they were recorded in and the policies compared.

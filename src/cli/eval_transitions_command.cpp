@@ -195,9 +195,12 @@ void run_eval_transitions(const EvalTransitionsFlags& f) {
   const std::string method = fmt::format(
       "{} pairs (A, B) and {} references (B, B). From A's initial state conditioned on z_A; z blended "
       "linearly to z_B over control steps {}..{} ({:.2f}..{:.2f} s of {:.2f} s); the {} measured from step {} "
-      "({:.2f} s, after {} settling steps) to the end. Matched B: stayed up to the end and {}.\n\n",
+      "({:.2f} s, after {} settling steps) to the end. Matched B: stayed up to the end and {}.{}\n\n",
       sampled.size(), pairs.size() - sampled.size(), blend.start, blend.end() - 1, blend.start * dt, blend.end() * dt,
-      env.episode_length() * dt, judge.noun, measured_from, measured_from * dt, f.transition.settle, judge.rule);
+      env.episode_length() * dt, judge.noun, measured_from, measured_from * dt, f.transition.settle, judge.rule,
+      f.transition.rollout.start_seed == 0
+          ? ""
+          : fmt::format(" Starts: fresh initial states (start seed {}), not the demonstrations' own.", f.transition.rollout.start_seed));
   const std::string table = method +
                             eval::transition_table(eval::summarize_transitions(rows), judge.noun) +
                             "\nBy " + judge.noun + " of A and of B (pairs of different " + judge.noun + "s):\n\n" +
@@ -239,6 +242,7 @@ void add_eval_transitions(CLI::App& eval) {
       ->check(CLI::Range(0.0, 100.0))->capture_default_str();
   c->add_option("--envs", f->transition.rollout.num_envs, "environments stepped together")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  add_start_seed_option(*c, f->transition.rollout);
   c->add_option("--figure-pairs", f->figure_pairs, "pairs drawn in speed_over_time.png (0: no figure)")
       ->check(CLI::Range(0, 64))->capture_default_str();
   c->add_option("--videos", f->videos, "also write this many MP4s to OUT_DIR/videos: demonstrations A and B beside "

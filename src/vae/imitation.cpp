@@ -6,6 +6,7 @@
 
 #include "data/record.h"
 #include "util/progress.h"
+#include "util/rng.h"
 #include "vae/vae_trainer.h"
 #include "vae/demo_dataset.h"
 
@@ -66,7 +67,7 @@ std::vector<ImitationOutcome> roll_out_latent_policy(const Env& prototype,
 
   RecordRequest request;
   for (const auto& s : starts) {
-    request.seeds.push_back(s.seed);
+    request.seeds.push_back(options.start_seed ? derive_seed(s.seed, options.start_seed) : s.seed);
     request.contexts.push_back(s.context.empty() ? prototype.context() : s.context);
   }
   request.num_envs = options.num_envs;

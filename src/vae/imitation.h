@@ -34,6 +34,10 @@ struct ImitationOptions {
   int num_threads = 1;  // threads stepping them
   std::string speed_feature = "com_speed";  // empty for tasks without one (the arm)
   std::string fallen_feature = "fallen";  // optional; terminations count as falls too
+  // 0: each rollout from its start's own reset seed (the demonstration's initial state, as published); else from
+  // derive_seed(start's seed, start_seed) (util/rng.h): a fresh initial state of the same distribution (the env's
+  // reset noise), one per start and evaluation seed, so that an evaluation can be repeated over seeds.
+  std::uint64_t start_seed = 0;
 };
 
 struct ImitationOutcome {

@@ -68,6 +68,30 @@ TEST(ImitationTest, RolloutsStartFromTheDemonstrationsInitialStates) {
                           demos.episodes[1].observations.begin()));
 }
 
+TEST(ImitationTest, AStartSeedDrawsFreshInitialStatesRepeatably) {
+  const WalkerEnv env(episodes_of(20));
+  const auto demos = random_demos(env);
+  const auto zero = [](const torch::Tensor& obs, const torch::Tensor&) { return torch::zeros({obs.size(0), 6}); };
+  const auto starts = rollout_starts(demos, all(demos));
+  const auto z = torch::zeros({kEpisodes, 2});
+  ImitationOptions seeded;
+  seeded.start_seed = 1;
+  const auto a = roll_out_latent_policy(env, starts, z, zero, seeded);
+  const auto again = roll_out_latent_policy(env, starts, z, zero, seeded);
+  seeded.start_seed = 2;
+  const auto other = roll_out_latent_policy(env, starts, z, zero, seeded);
+  for (int i = 0; i < kEpisodes; ++i) {
+    const auto first = [](const std::vector<float>& o) { return std::vector<float>(o.begin(), o.begin() + 18); };
+    const auto demo = first(demos.episodes[i].observations);
+    EXPECT_NE(first(a[i].episode.observations), demo) << "episode " << i;
+    EXPECT_NE(first(a[i].episode.observations), first(other[i].episode.observations)) << "episode " << i;
+    EXPECT_EQ(a[i].episode.observations, again[i].episode.observations) << "episode " << i;
+    EXPECT_EQ(a[i].episode.context, demos.episodes[i].context);
+    // the same distribution: the env's reset noise (0.01) about the same nominal pose
+    for (size_t k = 0; k < demo.size(); ++k) EXPECT_NEAR(a[i].episode.observations[k], demo[k], 0.05) << k;
+  }
+}
+
 TEST(ImitationTest, ReplayingTheDemoActionsReproducesTheDemoSpeed) {
   const WalkerEnv env(episodes_of(60));
   const auto demos = random_demos(env);
