@@ -2,7 +2,7 @@
 # The paper's walker experiment (sections 3.1 and 4.2, Figure 4): every published walker artefact and
 # result, from the experts to the tables of docs/results.md ("Figure 4").
 #
-# Usage: scripts/reproduce/walker.sh [--dry-run] [STAGE...]   (default: results transitions)
+# Usage: scripts/reproduce/walker.sh [--dry-run] [STAGE...]   (default: results transitions spread)
 #   experts  29 single-speed PPO experts (24 at -1/0/1 m/s, 5 at 3 m/s) into experts/walker and two
 #            context-conditioned ones into experts/walker_context, each graded by `experts eval`:
 #            about 67 minutes for the 29 with 2 jobs, plus about 25 for the two 6 M-step context experts
@@ -16,17 +16,20 @@
 #   transitions  the paper's transition experiment (end of section 4.3): 200 seeded pairs of demonstrations of
 #            different speeds, z blended from the first's to the second's at mid-episode, for the VAE, diverse-GAIL,
 #            plain-GAIL and BC policies, into results/walker/transitions/ (two MP4s in videos/): about 4 minutes
+#   spread   the two evaluations above again from fresh starts, evaluation (start) seeds 1, 2, 3, into
+#            results/walker/spread/seedN/, and their spread beside the published figures,
+#            results/walker/spread/summary.md (scripts/walker_spread.py): about 10 minutes
 #   all      every stage above in order: about 3.5 hours on 2 cores
 # The experts and checkpoints are committed, and every stage that reads the demonstration file (no longer committed)
 # restores the published copy from git history when it is missing (or, in a clone without that history, makes it),
-# so `results transitions` alone regenerates every walker table and figure of docs/results.md; the earlier stages overwrite the committed artefacts (seeded: runs on another machine or thread
+# so `results transitions spread` alone regenerates every walker table and figure of docs/results.md; the earlier stages overwrite the committed artefacts (seeded: runs on another machine or thread
 # count may differ in the last digits; the demonstration file is byte-identical on a rerun). The embedding study of
 # docs/experiments/walker-embedding.md is scripts/reproduce/walker_embedding.sh.
 # --dry-run prints the commands without running them. Run from anywhere; paths are the repository's.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source scripts/reproduce/common.sh
-parse_stages "results transitions" "$@"
+parse_stages "results transitions spread" "$@"
 
 v=build/vaegail
 demos=data/walker/demos.h5
@@ -74,4 +77,19 @@ transitions() {
     --pairs 200 --seed 0 --per-expert 11 --videos 2 --out-dir results/walker/transitions
 }
 
-run_stages experts demos vae policies results transitions
+spread() {
+  ensure_published $demos 993cee9 demos
+  local seed out
+  for seed in 1 2 3; do
+    out=results/walker/spread/seed$seed
+    run $v eval walker --demos $demos --vae $vae_run/checkpoints/latest.pt --gail checkpoints/walker/diverse_gail \
+      --plain checkpoints/walker/plain_gail --bc checkpoints/walker/bc --per-expert 11 --start-seed $seed \
+      --out-dir $out/eval
+    run $v eval transitions --demos $demos --vae $vae_run/checkpoints/latest.pt \
+      --gail checkpoints/walker/diverse_gail --plain checkpoints/walker/plain_gail --bc checkpoints/walker/bc \
+      --pairs 200 --seed 0 --per-expert 11 --start-seed $seed --figure-pairs 0 --out-dir $out/transitions
+  done
+  run_to results/walker/spread/summary.md scripts/walker_spread.py results/walker
+}
+
+run_stages experts demos vae policies results transitions spread
