@@ -87,8 +87,8 @@ TEST(ImitationTest, AStartSeedDrawsFreshInitialStatesRepeatably) {
     EXPECT_NE(first(a[i].episode.observations), first(other[i].episode.observations)) << "episode " << i;
     EXPECT_EQ(a[i].episode.observations, again[i].episode.observations) << "episode " << i;
     EXPECT_EQ(a[i].episode.context, demos.episodes[i].context);
-    // the same distribution: the env's reset noise (0.01) about the same nominal pose
-    for (size_t k = 0; k < demo.size(); ++k) EXPECT_NEAR(a[i].episode.observations[k], demo[k], 0.05) << k;
+    // the same distribution: the walker's reset (joint angles +-0.1 rad, velocities +-0.05) about the same pose
+    for (size_t k = 0; k < demo.size(); ++k) EXPECT_NEAR(a[i].episode.observations[k], demo[k], 0.2) << k;
   }
 }
 
