@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # The published figures have not drifted: a small slice of each reproduce script, rerun on today's build and
 # compared with the values it gave when results/ was last regenerated (expected.txt, beside this script). ctest
-# runs this as `figures_drift` (about a minute on 2 cores).
+# runs this as `figures_drift` (40 s of CPU; 2.5 to 3.5 minutes on a busy 2-core machine).
 #   walker (scripts/reproduce/walker.sh): two demonstrations of each of four training experts (one per target
 #     speed) and of one held-out expert, collected from the committed experts as the demos stage does; their
-#     embeddings, the Figure 4 evaluation of the committed VAE, diverse-GAIL, plain-GAIL
-#     and BC policies (eval walker, the demonstrations' own starts and start seed 1 of the spread stage) and the
+#     embeddings (mu), the Figure 4 evaluation of the committed VAE, diverse-GAIL, plain-GAIL and BC policies
+#     (eval walker, from the demonstrations' own starts and with start seed 1 as the spread stage) and the
 #     transition experiment over all ordered pairs of five of them (eval transitions)
 #   arm (scripts/reproduce/arm.sh): two demonstrations of one training and three test experts, imitated and
 #     interpolated by the committed VAE's weights (eval arm: Figures 2 and 3)

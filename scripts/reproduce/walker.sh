@@ -18,7 +18,7 @@
 #            plain-GAIL and BC policies, into results/walker/transitions/ (two MP4s in videos/): about 4 minutes
 #   spread   the two evaluations above again from fresh starts, evaluation (start) seeds 1, 2, 3, into
 #            results/walker/spread/seedN/, and their spread beside the published figures,
-#            results/walker/spread/summary.md (scripts/walker_spread.py): about 10 minutes
+#            results/walker/spread/summary.md (scripts/walker_spread.py): about 6 minutes
 #   all      every stage above in order: about 3.5 hours on 2 cores
 # The experts and checkpoints are committed, and every stage that reads the demonstration file (no longer committed)
 # restores the published copy from git history when it is missing (or, in a clone without that history, makes it),
