@@ -19,12 +19,10 @@ namespace vaegail {
 namespace {
 
 // What a resumed search must share with the one that wrote the state.
-nlohmann::json search_identity(const nlohmann::json& start, const std::vector<TunedParameter>& tuned,
-                               const TuneOptions& options) {
+nlohmann::json search_identity(const std::vector<TunedParameter>& tuned, const TuneOptions& options) {
   nlohmann::json names = nlohmann::json::array();
   for (const auto& p : tuned) names.push_back({p.name, p.low, p.high});
-  return {{"start", start}, {"tuned", names}, {"population", options.population}, {"sigma", options.sigma},
-          {"seed", options.seed}};
+  return {{"tuned", names}, {"population", options.population}, {"sigma", options.sigma}, {"seed", options.seed}};
 }
 
 struct GenerationRecord {
@@ -68,19 +66,20 @@ nlohmann::json denormalise(const nlohmann::json& start, const std::vector<TunedP
   return parameters;
 }
 
-TuneResult tune_parameters(const nlohmann::json& start, const std::vector<TunedParameter>& tuned,
+TuneResult tune_parameters(const nlohmann::json& fresh_start, const std::vector<TunedParameter>& tuned,
                            const TuneOptions& options, const ParameterCost& cost, const std::string& state_path,
                            const std::string& metrics_path) {
   if (tuned.empty()) throw std::invalid_argument("nothing to tune: no parameters named");
-  const nlohmann::json identity = search_identity(start, tuned, options);
+  const nlohmann::json identity = search_identity(tuned, options);
+  nlohmann::json start = fresh_start;
   CmaEs es(normalise(start, tuned), {.population = options.population, .sigma = options.sigma, .seed = options.seed});
   std::vector<GenerationRecord> history;
   TuneResult result;
   if (std::filesystem::exists(state_path)) {
     const nlohmann::json state = read_json_file(state_path);
     if (state.value("identity", nlohmann::json()) != identity)
-      throw std::runtime_error(state_path +
-                               ": a search with other parameters, bounds, start or options (use another state file)");
+      throw std::runtime_error(state_path + ": a search with other parameters, bounds or options (use another state file)");
+    start = state.at("start");
     es = CmaEs::from_state(state.at("cma"));
     history = state.at("history").get<std::vector<GenerationRecord>>();
     result.resumed = fmt::format("resumed at generation {}", es.generation());
@@ -107,7 +106,7 @@ TuneResult tune_parameters(const nlohmann::json& start, const std::vector<TunedP
     // The state first: a kill between the two writes leaves a CSV one row short, which the
     // resumed run rewrites whole from the state's history.
     write_file_atomically(state_path,
-                          nlohmann::json{{"identity", identity}, {"cma", es.state()}, {"history", history}}.dump(1));
+                          nlohmann::json{{"identity", identity}, {"start", start}, {"cma", es.state()}, {"history", history}}.dump(1));
     write_metrics(metrics_path, history);
     progress.advance();
     progress.set_status(fmt::format("best {:.4g}  sigma {:.3g}", es.best_cost(), es.sigma()));

@@ -61,8 +61,10 @@ nlohmann::json denormalise(const nlohmann::json& start, const std::vector<TunedP
 
 // Searches from `start` for options.generations generations (in total, counting a resumed
 // search's earlier ones), scoring each candidate with `cost`. A state at `state_path` resumes
-// the search when it was made with the same tuned parameters, start and options, and throws
-// std::runtime_error naming the file otherwise. The metrics CSV (generation, best_cost,
+// the search when it was made with the same tuned parameters, bounds and options (the number of
+// generations aside: more carries on), and throws std::runtime_error naming the file otherwise;
+// a resumed search starts from the state's start, not from `start`, so that the same command
+// still resumes after its result has been written over the file it started from. The metrics CSV (generation, best_cost,
 // mean_cost, sigma, seconds) is written next to it as metrics_path. A progress bar shows the
 // generations and the best cost.
 TuneResult tune_parameters(const nlohmann::json& start, const std::vector<TunedParameter>& tuned,

@@ -70,7 +70,11 @@ TEST_F(ParameterTunerTest, AResumedSearchEndsWhereTheUninterruptedOneEnds) {
   tune_parameters(kStart, kTuned, first, bowl, path("part.json"), path("part.csv"));
   // A state identical to the 12-generation one, but options.generations is not part of the
   // search's identity: the same command with more generations carries on.
-  const TuneResult resumed = tune_parameters(kStart, kTuned, options, bowl, path("part.json"), path("part.csv"));
+  // The start a resumed search is given does not count: the state's does (a tuner writes its
+  // result over the style file it started from, and the same command must still resume).
+  nlohmann::json moved = kStart;
+  moved["a"] = 0.1;
+  const TuneResult resumed = tune_parameters(moved, kTuned, options, bowl, path("part.json"), path("part.csv"));
   EXPECT_EQ(resumed.resumed, "resumed at generation 12");
   EXPECT_EQ(resumed.parameters, whole.parameters);
   EXPECT_EQ(resumed.cost, whole.cost);
