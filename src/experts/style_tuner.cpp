@@ -87,12 +87,17 @@ StyleTuning read_style_tuning(const std::string& path) {
   return t;
 }
 
+double style_miss_cost(double tolerances) {
+  const double m = std::abs(tolerances);
+  return m <= kHuberKnee ? m * m : kHuberKnee * (2 * m - kHuberKnee);
+}
+
 double style_episode_cost(const GaitEpisodeResult& episode, const std::vector<StyleTarget>& targets, double duration) {
   double cost = kFallWeight * (1 - std::min(episode.time_up / duration, 1.0));
   const bool measured = episode.time_up >= kMeasuredAfter;
   for (const auto& t : targets) {
-    const double miss = measured ? (style_measure(episode, t.measure) - t.target) / t.tolerance : INFINITY;
-    cost += std::isfinite(miss) ? std::min(miss * miss, kMissCap) : kMissCap;
+    const double miss = measured ? (style_measure(episode, t.measure) - t.target) / t.tolerance : kUnmeasuredMiss;
+    cost += style_miss_cost(std::isfinite(miss) ? miss : kUnmeasuredMiss);
   }
   const double heading = episode.heading_error / kHeadingTolerance, drift = episode.lateral_drift / kDriftTolerance;
   return cost + heading * heading + drift * drift + kEffortWeight * episode.effort;

@@ -21,12 +21,16 @@
 //
 // The cost of a candidate is the mean over the episodes of
 //   kFallWeight (1 - time_up / duration)                          staying up first
-//   + sum over targets of min(((measure - target) / tolerance)^2, kMissCap)   the style
+//   + sum over targets of huber((measure - target) / tolerance)   the style
 //   + (heading_error / kHeadingTolerance)^2 + (lateral_drift / kDriftTolerance)^2   going where told
 //   + kEffortWeight effort
-// where an episode that falls within kMeasuredAfter seconds has no gait to measure and pays
-// kMissCap per target. Without its targets a re-tune drifts back to the walk it started from
-// (the prototype's lesson), so every style states its signature as targets.
+// huber(m) = m^2 up to |m| = kHuberKnee, then linear in |m| with the same slope there: a far miss
+// still tells the search which way is better (a capped square is flat far away, and a search that
+// starts many tolerances off its targets, as a new style does, then sees no difference between
+// its candidates; the first tuning of the simple walk stalled so for 16 generations). An episode
+// that falls within kMeasuredAfter seconds has no gait to measure and pays huber(kUnmeasuredMiss)
+// per target. Without its targets a re-tune drifts back to the walk it started from (the
+// prototype's lesson), so every style states its signature as targets.
 #pragma once
 
 #include <array>
@@ -63,7 +67,7 @@ struct StyleTuning {
   GaitEpisodeOptions episode;  // pushes and their force (seed set per episode)
 };
 
-inline constexpr double kFallWeight = 50, kMissCap = 25, kMeasuredAfter = 2.0;
+inline constexpr double kFallWeight = 200, kHuberKnee = 3, kUnmeasuredMiss = 10, kMeasuredAfter = 2.0;
 inline constexpr double kHeadingTolerance = 0.2, kDriftTolerance = 1.0, kEffortWeight = 1.0;
 
 // Reads a style file's targets and "tune" section. Throws one line naming the file and the key
@@ -71,6 +75,8 @@ inline constexpr double kHeadingTolerance = 0.2, kDriftTolerance = 1.0, kEffortW
 // parameter that GaitParameters lacks).
 StyleTuning read_style_tuning(const std::string& style_path);
 
+// The style term of a miss of `tolerances` tolerances (the formula above).
+double style_miss_cost(double tolerances);
 // The cost of one episode (the formula above) for `duration` seconds of episode.
 double style_episode_cost(const GaitEpisodeResult& episode, const std::vector<StyleTarget>& targets, double duration);
 

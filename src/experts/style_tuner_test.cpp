@@ -35,12 +35,23 @@ TEST(StyleTuner, AnEpisodeCostsItsFallItsMissesItsDriftAndItsEffortByHand) {
   e = upright_episode();
   e.time_up = 5;
   EXPECT_NEAR(style_episode_cost(e, targets, 10), kFallWeight / 2 + 4.0, 1e-12);
-  // A miss is capped, and an episode too short to measure pays the cap on every target.
+  // A far miss grows linearly, and an episode too short to measure pays a fixed far miss on
+  // every target.
   e = upright_episode();
-  e.speed = 100;
-  EXPECT_NEAR(style_episode_cost(e, targets, 10), kMissCap, 1e-12);
+  e.speed = 2.2;  // ten tolerances off: 3 (2 * 10 - 3)
+  EXPECT_NEAR(style_episode_cost(e, targets, 10), 51.0, 1e-9);
   e.time_up = kMeasuredAfter / 2;
-  EXPECT_NEAR(style_episode_cost(e, targets, 10), kFallWeight * (1 - kMeasuredAfter / 20) + 2 * kMissCap, 1e-12);
+  EXPECT_NEAR(style_episode_cost(e, targets, 10),
+              kFallWeight * (1 - kMeasuredAfter / 20) + 2 * style_miss_cost(kUnmeasuredMiss), 1e-9);
+}
+
+TEST(StyleTuner, AMissCostsItsSquareNearTheTargetAndGrowsLinearlyFarFromIt) {
+  EXPECT_DOUBLE_EQ(style_miss_cost(0), 0);
+  EXPECT_DOUBLE_EQ(style_miss_cost(-2), 4);
+  EXPECT_DOUBLE_EQ(style_miss_cost(kHuberKnee), kHuberKnee * kHuberKnee);  // continuous at the knee
+  // The slope keeps its value at the knee (2 * knee per tolerance), so far candidates still rank.
+  EXPECT_DOUBLE_EQ(style_miss_cost(12) - style_miss_cost(11), 2 * kHuberKnee);
+  EXPECT_LT(style_miss_cost(20), style_miss_cost(21));
 }
 
 TEST(StyleTuner, MeasuresAreReadByName) {
@@ -142,6 +153,21 @@ TEST_F(StyleFileTest, TuningWritesTheBestParametersIntoTheFileAndARerunResumesTo
   const TuneResult again = tune_style(path, (dir_ / "run").string(), 1, "the command");
   EXPECT_EQ(again.resumed, "resumed at generation 2");
   EXPECT_EQ(again.parameters, first.parameters);
+}
+
+TEST(StyleTuner, EveryCommittedStyleFileReadsWithItsTargetsAndBounds) {
+  int files = 0;
+  for (const char* set : {"train", "eval"})
+    for (const auto& entry : fs::directory_iterator(fs::path(VAEGAIL_SOURCE_DIR) / "configs/humanoid_styles" / set)) {
+      const StyleTuning t = read_style_tuning(entry.path().string());
+      EXPECT_FALSE(t.targets.empty()) << entry.path();
+      EXPECT_GE(t.tuned.size(), 20u) << entry.path();
+      const nlohmann::json style = read_json_file(entry.path().string());
+      EXPECT_EQ(style.at("set"), set) << entry.path();
+      EXPECT_FALSE(style.at("description").get<std::string>().empty()) << entry.path();
+      ++files;
+    }
+  EXPECT_EQ(files, 11);  // the paper's six training and five evaluation styles
 }
 
 }  // namespace
