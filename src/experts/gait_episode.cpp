@@ -90,11 +90,13 @@ GaitEpisodeResult run_gait_episode(HumanoidEnv& env, const GaitParameters& p, co
   std::vector<float> action(env.act_dim());
   GaitEpisodeResult r;
   int measured = 0;
+  if (observer) observer(env, nullptr, nullptr);
   for (int t = 0; t < steps && !r.fallen; ++t) {
-    episode.rewards.push_back(env.step_controlled(pushed, action.data()).reward);
+    const StepOutcome outcome = env.step_controlled(pushed, action.data());
+    episode.rewards.push_back(outcome.reward);
     episode.features.resize(episode.features.size() + n_features);
     env.features(episode.features.data() + episode.features.size() - n_features);
-    if (observer) observer(env, action.data());
+    if (observer) observer(env, action.data(), &outcome);
     ++r.control_steps;
     r.fallen = env.fallen();
     const double time = env.data()->time;
@@ -133,7 +135,8 @@ int held_mean_replay_steps(HumanoidEnv& env, const GaitParameters& p, const Gait
   const int root = mj_name2id(env.model(), mjOBJ_BODY, "root");
   std::vector<std::vector<float>> actions;
   std::vector<Vec3> path;
-  run_gait_episode(env, p, unpushed, [&](const HumanoidEnv& e, const float* action) {
+  run_gait_episode(env, p, unpushed, [&](const HumanoidEnv& e, const float* action, const StepOutcome*) {
+    if (!action) return;  // the reset
     actions.emplace_back(action, action + e.act_dim());
     const double* x = e.data()->xpos + 3 * root;
     path.push_back({x[0], x[1], x[2]});

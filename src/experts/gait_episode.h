@@ -44,8 +44,10 @@ struct GaitEpisodeResult {
   double wall_seconds = 0;         // s spent simulating and controlling
 };
 
-// Called after each control step with the environment and the step's mean action (float[56]).
-using GaitStepObserver = std::function<void(const HumanoidEnv& env, const float* mean_action)>;
+// Called once after the reset (mean_action and outcome null), then after each control step with
+// the step's mean action (float[56]) and outcome: what a recorder of the episode needs.
+using GaitStepObserver =
+    std::function<void(const HumanoidEnv& env, const float* mean_action, const StepOutcome* outcome)>;
 
 // Resets `env` with options.seed and walks it with `parameters` until it falls or the steps run
 // out (the environment's own time limit and termination are not used: it may run longer).

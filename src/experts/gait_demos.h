@@ -1,0 +1,43 @@
+// `vaegail demos collect --task humanoid --styles FILE...`: demonstrations of the humanoid's gait
+// controllers (experts/gait_controller.h), one style file per controller. The controller acts
+// at every physics step; each control step records the observation and, as its action, the mean
+// control applied over the step (MujocoEnv::step_controlled), so that the file has the shapes of
+// every other demonstration file (137-float observations, 56-float actions, 19 features).
+//
+// Episode i plays style i mod K (K style files, in the order given) from the reset's perturbed
+// start seeded by derive_seed(seed, i), for the environment's 334 control steps or until it
+// falls; it carries context [i mod K] ("style") and expert id "SET/STYLE" (the file's "set" and
+// "style", else its folder and name), so that later stages name the styles (`demos styles`).
+// Clean demonstrations: no pushes, no noise (the paper's controllers' demonstrations).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "data/demos.h"
+#include "experts/gait_parameters.h"
+
+namespace vaegail {
+
+class Progress;
+
+struct GaitDemonstrator {
+  std::string label;  // "train/walk"
+  GaitParameters parameters;
+};
+
+// The style of a style file, labelled by its "set" and "style" keys (else its folder and name).
+GaitDemonstrator read_gait_demonstrator(const std::string& path);
+
+struct GaitDemoOptions {
+  int episodes = 250;  // in all, over the styles
+  std::uint64_t seed = 0;
+  int threads = 1;     // episodes recorded at once
+};
+
+// The episodes in order, and the header of the humanoid's files (context names "style").
+std::vector<Episode> record_gait_demos(const std::vector<GaitDemonstrator>& styles, const GaitDemoOptions& options,
+                                       DemoHeader* header, Progress* progress = nullptr);
+
+}  // namespace vaegail
