@@ -9,7 +9,8 @@ namespace vaegail::cli {
 void add_env_commands(CLI::App& app);
 void add_data_commands(CLI::App& app);  // data info/import/export
 void add_bench_commands(CLI::App& app);
-void add_expert_commands(CLI::App& app);  // experts train/eval, demos collect
+void add_expert_commands(CLI::App& app);  // experts train/eval/tune, demos collect
+void add_experts_tune(CLI::App& experts);
 void add_quickstart_command(CLI::App& app);
 void add_vae_commands(CLI::App& app);  // vae train/embed/knn/imitate/interpolate, bench vae
 void add_plot_commands(CLI::App& app);  // plot curves/tsne/histogram

@@ -16,6 +16,7 @@
 #include "experts/demo_collection.h"
 #include "experts/expert_eval.h"
 #include "experts/expert_trainer.h"
+#include "experts/gait_demos.h"
 #include "experts/gait_eval.h"
 #include "experts/humanoid_gait.h"
 #include "experts/predictive_sampling.h"
@@ -315,11 +316,35 @@ struct CollectFlags {
   std::vector<std::string> passing;
   CollectOptions collect;
   bool force = false;
+  std::vector<std::string> styles;  // humanoid: gait controllers' style files
 };
+
+// The humanoid's gait controllers: --episodes in all (default 250), episode i in style i mod K.
+void collect_gait_demos(const CollectFlags& f) {
+  std::vector<GaitDemonstrator> styles;
+  for (const auto& path : f.styles) styles.push_back(read_gait_demonstrator(path));
+  GaitDemoOptions o;
+  o.episodes = f.episodes > 0 ? f.episodes : o.episodes;
+  o.seed = f.collect.seed;
+  o.threads = f.collect.threads;
+  DemoHeader header;
+  Progress progress("collect", o.episodes, "episodes");
+  const std::vector<Episode> episodes = record_gait_demos(styles, o, &header, &progress);
+  DemoWriter writer(f.out, header);
+  for (const auto& e : episodes) writer.append(e);
+  writer.commit();
+  progress.finish();
+  std::printf("wrote %s: %zu gait styles, %d episodes\n", f.out.c_str(), styles.size(), o.episodes);
+}
 
 void run_collect(CollectFlags f) {
   const RunLock lock = lock_output_file(f.out);
   if (fs::exists(f.out) && !f.force) throw std::runtime_error(f.out + ": exists (pass --force to replace it)");
+  if (!f.styles.empty()) {
+    if (f.task != "humanoid") throw std::invalid_argument("--styles is for --task humanoid (gait controllers)");
+    if (fs::path(f.out).has_parent_path()) fs::create_directories(fs::path(f.out).parent_path());
+    return collect_gait_demos(f);
+  }
   std::vector<std::string> passing;
   for (const auto& path : f.passing) {  // experts that passed the bar in `experts eval --json` reports
     const auto report = nlohmann::json::parse(read_file(path));
@@ -372,12 +397,14 @@ void run_styles(const std::string& path) {
   if (!humanoid) throw std::invalid_argument(path + ": demos styles reads humanoid demonstrations, not " + env->id());
   std::vector<GaitSignature> rows;
   std::vector<int> labels;
+  std::vector<std::string> names;  // the styles by expert id ("train/walk"), in order of appearance
   for (const auto& e : demos.episodes) {
     rows.push_back(gait_signature(e, demos.header.feature_names, env->control_timestep()));
-    labels.push_back(static_cast<int>(e.context.at(0)));
+    const auto known = std::find(names.begin(), names.end(), e.expert_id);
+    labels.push_back(static_cast<int>(known - names.begin()));
+    if (known == names.end()) names.push_back(e.expert_id);
   }
   const Confusion confusion = split_half_confusion(rows, labels);
-  const auto& names = humanoid->style_names();
   std::printf("%-13s", "true \\ named");
   for (const auto& [style, row] : confusion) std::printf(" %8s", names.at(style).c_str());
   std::printf("\n");
@@ -523,6 +550,8 @@ void add_expert_commands(CLI::App& app) {
     run_eval(*e);
   });
 
+  add_experts_tune(*experts);
+
   auto p = std::make_shared<PlanFlags>();
   CLI::App* plan = experts->add_subcommand("plan", "humanoid: predictive-sampling MPC (no training) in each style; how long each episode stays up");
   plan->add_option("--styles", p->styles, "style indices (models/humanoid_cmu.xml's style list)")->capture_default_str();
@@ -560,6 +589,9 @@ void add_expert_commands(CLI::App& app) {
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   collect->add_option("--held-out", c->held_out, "expert ids marked held_out = 1 (kept out of VAE training)");
   collect->add_option("--seed", c->collect.seed, "episode seeds")->capture_default_str();
+  collect->add_option("--styles", c->styles, "humanoid: gait controllers' style files (configs/humanoid_styles/*/*.json) instead of --experts-dir; --episodes-per-expert is then the episodes in all (default 250), episode i in style i mod K")
+      ->check(CLI::ExistingFile);
+  collect->add_option("--threads", c->collect.threads, "episodes stepped at once (one core each)")->check(CLI::Range(1, 64))->capture_default_str();
   collect->add_flag("--force", c->force, "replace an existing output file");
   collect->callback([c] { run_collect(*c); });
 
