@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# The paper's humanoid experiment (section 4.3, Figure 5), as far as it exists: the gait controllers of the CMU
+# humanoid in eleven movement styles (six training, five evaluation; configs/humanoid_styles/), their evaluation and
+# their demonstrations (issue 49; docs/humanoid_controllers.md).
+#
+# Usage: scripts/reproduce/humanoid.sh [--dry-run] [STAGE...]   (default: controllers demos)
+#   tune   CMA-ES over each style's parameters from its file's 'tune' section (`experts tune`, 2 candidates at once),
+#          the result written into the style file; resumable from runs/tune/SET_STYLE: 10-25 minutes a style on
+#          2 idle cores, the evaluation set's drunk and old after its normal (they start from it)
+#   controllers  `experts eval --task humanoid --styles`: per style, 20 ten-second episodes from perturbed starts without
+#          and with a 200 N push, gait measures, signature, control steps/s against raw physics, the held-mean
+#          replay figure, into results/humanoid/controllers.{txt,csv,json}: about 2 minutes
+#   demos  data/humanoid/train.h5 (250 episodes of the six training controllers) and data/humanoid/eval.h5 (250 of
+#          the five evaluation controllers), 334 steps each, clean, style as context; `data info` and `demos styles`
+#          (the nearest-centroid style classifier) of each into results/humanoid/: about 3 minutes
+#   all    every stage above in order
+# The style files are committed with their tuned parameters, so `controllers demos` regenerates every published humanoid
+# figure; the demonstration files are not committed (they are remade in minutes). --dry-run prints the commands.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+source scripts/reproduce/common.sh
+parse_stages "controllers demos" "$@"
+
+v=build/vaegail
+train_styles=(configs/humanoid_styles/train/{walk,cat,chicken,drunk,old,graceful}.json)
+eval_styles=(configs/humanoid_styles/eval/{drunk,normal,old,swagger,strong}.json)
+
+tune() {
+  for s in "${train_styles[@]}" configs/humanoid_styles/eval/{normal,drunk,old,swagger,strong}.json; do
+    run $v experts tune "$s" --jobs 2
+  done
+}
+
+controllers() {
+  [ "$dry_run" = 1 ] || mkdir -p results/humanoid
+  run_to results/humanoid/controllers.txt $v experts eval --task humanoid --styles "${train_styles[@]}" \
+    "${eval_styles[@]}" --episodes 20 --replay --csv results/humanoid/controllers.csv \
+    --json results/humanoid/controllers.json
+}
+
+demos() {
+  for set in train eval; do
+    local styles=("${train_styles[@]}")
+    [ $set = eval ] && styles=("${eval_styles[@]}")
+    run $v demos collect --task humanoid --styles "${styles[@]}" --episodes-per-expert 250 --threads 2 \
+      --out data/humanoid/$set.h5 --force
+    run_to results/humanoid/${set}_demos.txt $v data info data/humanoid/$set.h5
+    run_to results/humanoid/${set}_styles.txt $v demos styles --demos data/humanoid/$set.h5
+  done
+}
+
+run_stages tune controllers demos
