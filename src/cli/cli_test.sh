@@ -176,14 +176,16 @@ expect_error "--config must give a 'grid' or 'grids'" "$tmp/h" -- experts train 
   [ -s "$tmp/h/humanoid_ctx0_3_logstd-1_seed0/agent.pt" ] || fail "experts train --task humanoid"
 "$v" experts eval --dir "$tmp/h" --episodes 2 > "$tmp/stdout" 2>&1 && grep -q " drunk " "$tmp/stdout" &&
   grep -q "turn_rate" "$tmp/stdout" || fail "experts eval of a humanoid expert: $(cat "$tmp/stdout")"
-"$v" demos collect --task humanoid --experts-dir "$tmp/h" --episodes-per-expert 4 --out "$tmp/h.h5" > /dev/null 2>&1 &&
-  "$v" demos styles --demos "$tmp/h.h5" > "$tmp/stdout" 2>&1 && grep -q "of 2 held-out episodes named right" "$tmp/stdout" ||
-  fail "demos collect --task humanoid, demos styles: $(cat "$tmp/stdout")"
+
+# ---- the humanoid's gait controllers: demos collect --styles, demos styles, experts tune -----
+styles=("$root/configs/humanoid_styles/train/old.json" "$root/configs/humanoid_styles/train/chicken.json")
+"$v" demos collect --task humanoid --styles "${styles[@]}" --episodes-per-expert 4 --threads 2 --out "$tmp/h.h5" > /dev/null 2>&1 &&
+  "$v" demos styles --demos "$tmp/h.h5" > "$tmp/stdout" 2>&1 && grep -q "of 2 held-out episodes named right" "$tmp/stdout" &&
+  grep -q "train/chicken" "$tmp/stdout" || fail "demos collect --task humanoid --styles, demos styles: $(cat "$tmp/stdout")"
+expect_error "--styles is for --task humanoid" "$tmp/w.h5" -- demos collect --styles "${styles[0]}" --out "$tmp/w.h5"
 expect_error "demos styles reads humanoid demonstrations" "" -- demos styles --demos "$tmp/one.h5"
-"$v" experts plan --styles 0 3 --steps 2 --samples 2 --horizon 3 --csv "$tmp/plan.csv" > "$tmp/stdout" 2>&1 &&
-  grep -q "^drunk " "$tmp/stdout" && [ "$(wc -l < "$tmp/plan.csv")" -eq 3 ] ||
-  fail "experts plan: $(cat "$tmp/stdout")"
-expect_error "--styles: 8 is not a style index (0 to 7)" "" -- experts plan --styles 8
+printf '{"parameters": {}, "targets": {"grace": [1, 1]}, "tune": {"parameters": {}}}' > "$tmp/style.json"
+expect_error "$tmp/style.json: target 'grace' is not a style measure" "" -- experts tune "$tmp/style.json" --run-dir "$tmp/tune"
 
 # ---- the humanoid's gait controllers: experts eval --styles -----------------------------
 "$v" experts eval --task humanoid --styles "$root/configs/humanoid_styles/train/walk.json" --episodes 1 \

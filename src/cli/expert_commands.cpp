@@ -19,7 +19,6 @@
 #include "experts/gait_demos.h"
 #include "experts/gait_eval.h"
 #include "experts/humanoid_gait.h"
-#include "experts/predictive_sampling.h"
 #include "env/humanoid.h"
 #include "data/demos.h"
 #include "util/atomic_file.h"
@@ -422,83 +421,6 @@ void run_styles(const std::string& path) {
               100 * accuracy(confusion), named_episodes, kGaitStatistics.size());
 }
 
-// ---- experts plan ----------------------------------------------------------------------
-struct PlanFlags {
-  std::vector<int> styles = {0};
-  int episodes = 1;
-  int steps = 334;
-  std::uint64_t seed = 0;
-  double balance = 1.0;        // weight of the capture-point term added to each rollout step
-  double balance_scale = 0.1;  // offset (m) at which that term's credit halves
-  std::string csv;
-  PredictiveSamplingOptions planner;
-};
-
-// Predictive sampling on the humanoid, style by style: how long each episode stays up, and
-// what it does meanwhile (the second method tried for issue 34; docs/humanoid_controllers.md).
-void run_plan(const PlanFlags& f) {
-  HumanoidOptions options;
-  options.episode_length = f.steps;
-  HumanoidEnv env(options);
-  const auto& names = env.style_names();
-  for (int style : f.styles)
-    if (style < 0 || style >= static_cast<int>(names.size()))
-      throw std::invalid_argument("--styles: " + std::to_string(style) + " is not a style index (0 to " +
-                                  std::to_string(names.size() - 1) + ")");
-  std::unique_ptr<CsvLog> log;
-  if (!f.csv.empty())
-    log = std::make_unique<CsvLog>(f.csv, std::vector<std::string>{"style", "episode", "steps", "fell",
-                                                                   "mean_speed", "mean_reward", "seconds_per_step"});
-  Progress progress("plan", static_cast<std::int64_t>(f.styles.size()) * f.episodes * f.steps, "steps");
-  std::string table = fmt::format("{:<8} {:>7} {:>6} {:>5} {:>10} {:>11} {:>8}\n", "style", "episode", "steps", "fell",
-                                  "speed m/s", "reward/step", "s/step");
-  for (int style : f.styles) {
-    for (int episode = 0; episode < f.episodes; ++episode) {
-      env.set_context({static_cast<double>(style)});
-      env.reset(derive_seed(f.seed, static_cast<std::uint64_t>(style) * 100003 + episode));
-      PredictiveSamplingOptions o = f.planner;
-      o.seed = derive_seed(f.seed + 1, static_cast<std::uint64_t>(style) * 100003 + episode);
-      PredictiveSampling planner(env, o);
-      if (f.balance > 0)
-        planner.shaping = [&f](const MujocoEnv& e) {
-          const double x = static_cast<const HumanoidEnv&>(e).capture_point_offset() / f.balance_scale;
-          return f.balance * (1 / (1 + x * x) - 1);
-        };
-      const auto start = std::chrono::steady_clock::now();
-      double speed = 0, reward = 0;
-      int t = 0;
-      bool fell = false;
-      while (t < f.steps) {
-        const StepOutcome out = env.step(planner.act(env).data());
-        ++t;
-        speed += env.forward_speed();
-        reward += out.reward;
-        progress.advance();
-        if (out.done()) {
-          fell = out.terminated;
-          break;
-        }
-      }
-      progress.advance(f.steps - t);
-      const double per_step = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / t;
-      const std::string line = fmt::format("{:<8} {:7} {:6} {:>5} {:10.2f} {:11.3f} {:8.2f}", names[style], episode, t,
-                                           fell ? "yes" : "no", speed / t, reward / t, per_step);
-      progress.set_status(line);
-      table += line + "\n";
-      if (log)
-        log->write({{"style", style},
-                    {"episode", episode},
-                    {"steps", t},
-                    {"fell", fell ? 1.0 : 0.0},
-                    {"mean_speed", speed / t},
-                    {"mean_reward", reward / t},
-                    {"seconds_per_step", per_step}});
-    }
-  }
-  progress.finish();
-  std::fputs(table.c_str(), stdout);
-}
-
 }  // namespace
 
 void add_expert_commands(CLI::App& app) {
@@ -552,22 +474,6 @@ void add_expert_commands(CLI::App& app) {
 
   add_experts_tune(*experts);
 
-  auto p = std::make_shared<PlanFlags>();
-  CLI::App* plan = experts->add_subcommand("plan", "humanoid: predictive-sampling MPC (no training) in each style; how long each episode stays up");
-  plan->add_option("--styles", p->styles, "style indices (models/humanoid_cmu.xml's style list)")->capture_default_str();
-  plan->add_option("--episodes", p->episodes, "episodes per style")->check(CLI::Range(1, 100000))->capture_default_str();
-  plan->add_option("--steps", p->steps, "control steps per episode (the task's 334 = 10 s)")->check(CLI::Range(1, 100000))->capture_default_str();
-  plan->add_option("--samples", p->planner.samples, "candidate plans per control step")->check(CLI::Range(1, 100000))->capture_default_str();
-  plan->add_option("--horizon", p->planner.horizon, "control steps each candidate is rolled out")->check(CLI::Range(2, 10000))->capture_default_str();
-  plan->add_option("--knots", p->planner.knots, "spline knots of a plan")->check(CLI::Range(2, 1000))->capture_default_str();
-  plan->add_option("--noise", p->planner.noise, "std of each knot's perturbation (control units)")->check(CLI::Range(0.0, 10.0))->capture_default_str();
-  plan->add_option("--balance", p->balance, "weight of the capture-point term added to the style reward in rollouts (0: the reward alone)")
-      ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
-  plan->add_option("--balance-scale", p->balance_scale, "capture-point offset (m) at which that term's credit halves")
-      ->check(CLI::Range(1e-3, 10.0))->capture_default_str();
-  plan->add_option("--seed", p->seed, "episode and planner seeds")->capture_default_str();
-  plan->add_option("--csv", p->csv, "also write one row per episode here");
-  plan->callback([p] { run_plan(*p); });
 
   auto c = std::make_shared<CollectFlags>();
   CLI::App* demos = app.add_subcommand("demos", "demonstration sets from experts");

@@ -166,18 +166,6 @@ double HumanoidEnv::lateral_speed() const {
   return -v[0] * std::sin(h) + v[1] * std::cos(h);
 }
 
-double HumanoidEnv::capture_point_offset() const {
-  const double* com = data()->subtree_com + 3 * root_;
-  double v[3];
-  subtree_velocity(root_, v);
-  const double lead = std::sqrt(std::max(com[2], 0.0) / 9.81);
-  const double* lfoot = data()->xpos + 3 * end_effectors_[2];
-  const double* rfoot = data()->xpos + 3 * end_effectors_[3];
-  const double dx = com[0] + v[0] * lead - 0.5 * (lfoot[0] + rfoot[0]);
-  const double dy = com[1] + v[1] * lead - 0.5 * (lfoot[1] + rfoot[1]);
-  return std::hypot(dx, dy);
-}
-
 StyleTerms HumanoidEnv::style_measures() const {
   const auto lhand = end_effector(0), rhand = end_effector(1), lfoot = end_effector(2), rfoot = end_effector(3);
   StyleTerms m{};

@@ -88,10 +88,6 @@ class HumanoidEnv : public MujocoEnv {
   double yaw_rate() const;
   // The centre of mass's speed across the heading (m/s, positive towards the body's left).
   double lateral_speed() const;
-  // Horizontal distance (m) from the capture point (the centre of mass moved on by its velocity
-  // times sqrt(height / g), where a point-mass pendulum comes to rest) to the midpoint of the feet:
-  // near 0 while the body could stop over its feet, large while it topples.
-  double capture_point_offset() const;
   StyleTerms style_measures() const;
   const std::vector<std::string>& style_names() const { return style_names_; }
   const StyleTerms& style_target(int style) const { return style_targets_.at(style); }
