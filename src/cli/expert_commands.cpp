@@ -434,7 +434,7 @@ void add_expert_commands(CLI::App& app) {
   train->add_option("--out-dir", t->out_dir, "one run directory per expert goes here")->capture_default_str();
   train->add_option("--grid", t->grid, "paper: 72 experts (6 speed groups x 4 log-std x 3 seeds); small: 12")
       ->check(CLI::IsMember({"paper", "small"}))->capture_default_str();
-  train->add_option("--config", t->config, "JSON with optional 'grid' or 'grids' (PPO tasks) and 'training' objects (e.g. configs/walker_experts_published.json, configs/humanoid_experts.json)")
+  train->add_option("--config", t->config, "JSON with optional 'grid' or 'grids' (PPO tasks) and 'training' objects (e.g. configs/walker_experts_published.json)")
       ->check(CLI::ExistingFile);
   train->add_option("--only", t->only, "train only these expert ids");
   train->add_option("--steps", t->steps, "environment steps per expert (overrides the config)")->check(CLI::Range(int64_t{1}, int64_t{1} << 40));
