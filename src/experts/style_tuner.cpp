@@ -11,6 +11,7 @@
 #include "env/humanoid.h"
 #include "util/atomic_file.h"
 #include "util/json_file.h"
+#include "util/run_lock.h"
 #include "util/rng.h"
 
 namespace vaegail {
@@ -120,7 +121,7 @@ double style_cost(const StyleTuning& tuning, const GaitParameters& parameters) {
 TuneResult tune_style(const std::string& style_path, const std::string& run_dir, int jobs, const std::string& command) {
   StyleTuning tuning = read_style_tuning(style_path);
   tuning.options.jobs = jobs;
-  std::filesystem::create_directories(run_dir);
+  const RunLock lock = lock_run_directory(run_dir);  // one search per run directory (creates it)
   const auto cost = [&](const nlohmann::json& parameters, int) {
     return style_cost(tuning, gait_parameters_from_json(parameters, style_path));
   };

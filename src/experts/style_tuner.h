@@ -85,7 +85,7 @@ double style_episode_cost(const GaitEpisodeResult& episode, const std::vector<St
 double style_cost(const StyleTuning& tuning, const GaitParameters& parameters);
 
 // Tunes the style of `style_path` (its search state and metrics.csv in `run_dir`, which a rerun
-// of the same command resumes from) on `jobs` threads, then writes the best parameters into the
+// of the same command resumes from, and which a second process is refused, util/run_lock.h) on `jobs` threads, then writes the best parameters into the
 // style file (atomically; every other key kept) with a "tuned" record naming `command`.
 TuneResult tune_style(const std::string& style_path, const std::string& run_dir, int jobs, const std::string& command);
 
