@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "experts/gait_demos.h"
 #include "util/progress.h"
 
 namespace vaegail::cli {
@@ -36,6 +37,9 @@ render::Clip demo_clip(const DemoSet& demos, int64_t episode) {
                                 std::to_string(demos.episodes.size()) + ", from 0)");
   const Episode& e = demos.episodes[episode];
   std::string caption = "demonstration #" + std::to_string(episode);
+  // A style's index means nothing on screen; its controller's label ("train/walk") does.
+  if (demos.header.context_names == std::vector<std::string>{"style"} && !e.expert_id.empty())
+    return {caption + "\n" + e.expert_id, e};
   for (size_t k = 0; k < e.context.size() && k < demos.header.context_names.size(); ++k)
     caption += fmt::format("{}{} {:.3g}", k ? ", " : "\n", demos.header.context_names[k], e.context[k]);
   return {caption, e};
@@ -66,6 +70,24 @@ std::vector<std::vector<render::Clip>> imitation_grid(const Env& env, const Demo
   return grid;
 }
 
+void attach_gait_demonstrators(std::vector<std::vector<render::Clip>>& grid, const std::vector<std::string>& style_files) {
+  std::map<std::string, GaitParameters> styles;
+  for (const auto& path : style_files) {
+    GaitDemonstrator style = read_gait_demonstrator(path);
+    styles.emplace(style.label, std::move(style.parameters));
+  }
+  for (auto& row : grid) {
+    render::Clip& demo = row.at(0);
+    const auto it = styles.find(demo.episode.expert_id);
+    if (it == styles.end())
+      throw std::invalid_argument(demo.caption.substr(0, demo.caption.find('\n')) + ": its expert id '" +
+                                  demo.episode.expert_id + "' is none of the --styles files' labels");
+    demo.demonstrator = [parameters = it->second](const mjModel* model) {
+      return make_gait_demonstrator(model, parameters);
+    };
+  }
+}
+
 void write_video(const Env& env, const std::vector<std::vector<render::Clip>>& grid,
                  const render::VideoOptions& options, const std::string& path) {
   Progress progress("render", render::video_frames(grid), "frames");
@@ -74,7 +96,7 @@ void write_video(const Env& env, const std::vector<std::vector<render::Clip>>& g
   for (const auto& r : reports)
     if (r.max_observation_error > kReplayTolerance)
       std::fprintf(stderr, "vaegail: note: %s: the replay departs from the recorded observations by up to %.3g "
-                   "(recorded with execution noise or by another tool?)\n",
+                   "(recorded with execution noise, by another tool, or by a physics-step demonstrator: --styles?)\n",
                    r.caption.substr(0, r.caption.find('\n')).c_str(), r.max_observation_error);
   std::printf("wrote %s\n", path.c_str());
 }

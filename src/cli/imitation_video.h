@@ -39,6 +39,12 @@ std::vector<std::vector<render::Clip>> imitation_grid(const Env& env, const Demo
                                                       const std::vector<int64_t>& episodes,
                                                       const std::vector<Imitator>& imitators);
 
+// The gait controllers of style files (experts/gait_demos.h) as the demonstrators of the
+// demonstration clips (each row's first) whose expert id is a style's label ("train/walk"): those
+// clips replay the controller, state for state, not its mean actions held. Throws naming the first
+// demonstration whose expert id no file labels.
+void attach_gait_demonstrators(std::vector<std::vector<render::Clip>>& grid, const std::vector<std::string>& style_files);
+
 // Writes the video with a progress bar, then says where it went; a replay that departs from
 // its recorded observations (a demonstration recorded with execution noise or by another
 // tool) is named with by how much.

@@ -26,8 +26,20 @@ namespace {
 struct RenderFlags {
   std::string demos, task, vae, gail, plain, bc, expert, out, device = "cpu";
   std::vector<int64_t> episodes;
+  std::vector<std::string> styles;  // the humanoid's gait controllers that recorded the demonstrations
+  int columns = 0;                  // demonstrations alone, this many to a row
   render::VideoOptions video;
 };
+
+// The single-clip rows of demonstrations alone, `columns` to a row.
+std::vector<std::vector<render::Clip>> wrap_rows(std::vector<std::vector<render::Clip>> grid, int columns) {
+  std::vector<std::vector<render::Clip>> wrapped;
+  for (size_t i = 0; i < grid.size(); ++i) {
+    if (i % columns == 0) wrapped.emplace_back();
+    wrapped.back().push_back(std::move(grid[i].at(0)));
+  }
+  return wrapped;
+}
 
 // A PPO expert of `experts train` (experts/walker/ID) from each demonstration's start; its
 // condition input, when it has one, is the demonstration's context (its target or style).
@@ -62,8 +74,13 @@ void run_render(const RenderFlags& f) {
                        : torch::zeros({static_cast<int64_t>(f.episodes.size()), 1});
   auto sources = imitators(load_policies(model, *env, {f.gail, f.plain, f.bc}, device), z);
   if (!f.expert.empty()) sources.push_back(expert_imitator(f.expert, demos, f.episodes));
+  if (f.columns > 0 && !sources.empty())
+    throw std::invalid_argument("--columns lays out demonstrations alone; beside policies each row is one demonstration");
+  auto grid = imitation_grid(*env, demos, f.episodes, sources);
+  if (!f.styles.empty()) attach_gait_demonstrators(grid, f.styles);
+  if (f.columns > 0) grid = wrap_rows(std::move(grid), f.columns);
   if (fs::path(f.out).has_parent_path()) fs::create_directories(fs::path(f.out).parent_path());
-  write_video(*env, imitation_grid(*env, demos, f.episodes, sources), f.video, f.out);
+  write_video(*env, grid, f.video, f.out);
 }
 
 void add_render(CLI::App& app) {
@@ -81,8 +98,17 @@ void add_render(CLI::App& app) {
   c->add_option("--bc", f->bc, "behaviour-cloning run (directory, checkpoint or weights.pt): adds its rollout from the same start");
   c->add_option("--expert", f->expert, "expert run directory (experts/walker/ID): adds its rollout from the same "
                                        "start, conditioned on the demonstration's context");
+  c->add_option("--styles", f->styles, "the humanoid's gait-controller style files (configs/humanoid_styles/): "
+                                       "demonstrations they recorded are replayed by the controller itself, whose "
+                                       "torques change at every physics step, not by its mean actions held")
+      ->check(CLI::ExistingFile);
+  c->add_option("--columns", f->columns, "demonstrations alone (no policies): this many side by side per row")
+      ->check(CLI::Range(1, 64));
   c->add_option("--out", f->out, "the video (.mp4)")->required();
   add_video_options(*c, f->video);
+  c->add_option("--still", f->video.still_path, "also write one frame of the video as a PNG (a page's still)");
+  c->add_option("--still-frame", f->video.still_frame, "which frame --still is (0: the start; -1: the middle)")
+      ->check(CLI::Range(-1, 1 << 20))->capture_default_str();
   add_device_option(*c, f->device);
   c->callback([f] { run_render(*f); });
 }

@@ -6,6 +6,7 @@
 
 #include "data/record.h"
 #include "env/humanoid.h"
+#include "experts/gait_controller.h"
 #include "experts/gait_episode.h"
 #include "util/json_file.h"
 #include "util/progress.h"
@@ -13,6 +14,20 @@
 #include "util/thread_pool.h"
 
 namespace vaegail {
+
+namespace {
+// A gait controller with its skeleton, which the controller only refers to.
+class OwningGaitController : public PhysicsStepController {
+ public:
+  OwningGaitController(const mjModel* model, const GaitParameters& parameters)
+      : skeleton_(model, "humanoid"), gait_(skeleton_, parameters) {}
+  void control(const mjModel* model, mjData* data) override { gait_.control(model, data); }
+
+ private:
+  GaitSkeleton skeleton_;
+  GaitController gait_;
+};
+}  // namespace
 
 GaitDemonstrator read_gait_demonstrator(const std::string& path) {
   const nlohmann::json style = read_json_file(path);
@@ -62,6 +77,10 @@ std::vector<Episode> record_gait_demos(const std::vector<GaitDemonstrator>& styl
     }
   });
   return episodes;
+}
+
+std::unique_ptr<PhysicsStepController> make_gait_demonstrator(const mjModel* model, const GaitParameters& parameters) {
+  return std::make_unique<OwningGaitController>(model, parameters);
 }
 
 }  // namespace vaegail

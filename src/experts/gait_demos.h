@@ -12,10 +12,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "data/demos.h"
+#include "env/mujoco_env.h"
 #include "experts/gait_parameters.h"
 
 namespace vaegail {
@@ -39,5 +41,11 @@ struct GaitDemoOptions {
 // The episodes in order, and the header of the humanoid's files (context names "style").
 std::vector<Episode> record_gait_demos(const std::vector<GaitDemonstrator>& styles, const GaitDemoOptions& options,
                                        DemoHeader* header, Progress* progress = nullptr);
+
+// The style's controller for the humanoid `model`, owning what it needs: made right after a
+// recorded episode's reset and stepped with MujocoEnv::step_controlled, it walks that episode
+// again state for state (`render --styles`, render/episode_video.h). Its recorded actions cannot:
+// they are means over each control step.
+std::unique_ptr<PhysicsStepController> make_gait_demonstrator(const mjModel* model, const GaitParameters& parameters);
 
 }  // namespace vaegail

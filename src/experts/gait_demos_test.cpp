@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "env/humanoid.h"
@@ -47,6 +49,30 @@ TEST(GaitDemos, EpisodesCycleThroughTheStylesWithTheirLabelsAndTheFileLayout) {
   // The thread count does not change a recording.
   const auto alone = record_gait_demos(styles, {.episodes = 3, .seed = 5, .threads = 1}, nullptr);
   EXPECT_EQ(alone[2].observations, episodes[2].observations);
+
+  // A replay: the demonstrator made after the same reset walks through the recorded states,
+  // where the recorded (mean) actions held for each control step leave them.
+  const Episode& e = episodes[1];
+  HumanoidEnv scripted, held;
+  scripted.reset(e.seed);
+  held.reset(e.seed);
+  const auto demonstrator = make_gait_demonstrator(scripted.model(), slow);
+  std::vector<float> mean(env.act_dim()), observed(env.obs_dim());
+  float scripted_error = 0, held_error = 0;
+  bool held_ended = false;
+  for (int t = 0; t < e.length(); ++t) {
+    scripted.step_controlled(*demonstrator, mean.data());
+    const float* recorded = e.observations.data() + static_cast<size_t>(t + 1) * env.obs_dim();
+    scripted.observe(observed.data());
+    for (int k = 0; k < env.obs_dim(); ++k) scripted_error = std::max(scripted_error, std::abs(observed[k] - recorded[k]));
+    if (held_ended) continue;
+    const StepOutcome outcome = held.step(e.actions.data() + static_cast<size_t>(t) * env.act_dim());
+    held_ended = outcome.terminated || outcome.truncated;
+    held.observe(observed.data());
+    held_error = std::max(held_error, std::abs(observed[112] - recorded[112]));  // the root height
+  }
+  EXPECT_EQ(scripted_error, 0.0f);
+  EXPECT_GT(held_error, 0.05f);  // held, the mean actions drop or tip the body within the episode
 }
 
 TEST(GaitDemos, AStyleFileIsLabelledBySetAndStyleElseByFolderAndName) {

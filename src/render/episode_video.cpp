@@ -6,6 +6,7 @@
 
 #include "env/mujoco_env.h"
 #include "render/mp4_writer.h"
+#include "render/png_writer.h"
 #include "util/progress.h"
 
 namespace vaegail::render {
@@ -16,7 +17,7 @@ namespace {
 class Replay {
  public:
   Replay(const Env& prototype, const Clip& clip) : clip_(clip), env_(prototype.clone()) {
-    mujoco_ = dynamic_cast<const MujocoEnv*>(env_.get());
+    mujoco_ = dynamic_cast<MujocoEnv*>(env_.get());
     if (!mujoco_) throw RenderError("environment '" + prototype.id() + "' is not a MuJoCo one: nothing to render");
     const Episode& e = clip.episode;
     const int act_dim = env_->act_dim(), obs_dim = env_->obs_dim();
@@ -26,14 +27,22 @@ class Replay {
     has_observations_ = e.observations.size() == static_cast<size_t>(e.length() + 1) * obs_dim;
     if (!e.context.empty()) env_->set_context(e.context);
     env_->reset(e.seed);
+    if (clip.demonstrator) {
+      demonstrator_ = clip.demonstrator(mujoco_->model());
+      mean_action_.resize(act_dim);
+    }
     observation_.resize(obs_dim);
     compare();
   }
 
-  // Steps the next recorded action; false once every action has been stepped.
+  // Steps the next recorded action (or the demonstrator for as long); false once every action has
+  // been stepped.
   bool advance() {
     if (step_ >= clip_.episode.length()) return false;
-    env_->step(clip_.episode.actions.data() + static_cast<size_t>(step_) * env_->act_dim());
+    if (demonstrator_)
+      mujoco_->step_controlled(*demonstrator_, mean_action_.data());
+    else
+      env_->step(clip_.episode.actions.data() + static_cast<size_t>(step_) * env_->act_dim());
     ++step_;
     compare();
     return true;
@@ -59,7 +68,9 @@ class Replay {
 
   const Clip& clip_;
   std::unique_ptr<Env> env_;
-  const MujocoEnv* mujoco_ = nullptr;
+  MujocoEnv* mujoco_ = nullptr;
+  std::unique_ptr<PhysicsStepController> demonstrator_;
+  std::vector<float> mean_action_;
   bool has_observations_ = false;
   int step_ = 0;
   double max_error_ = 0;
@@ -94,6 +105,10 @@ std::vector<ReplayReport> write_episode_video(const Env& prototype, const std::v
   Mp4Writer video(path, {layout.width(), layout.height(), video_fps(prototype, options)});
 
   const int frames = video_frames(grid);
+  const int still = options.still_frame < 0 ? frames / 2 : options.still_frame;
+  if (!options.still_path.empty() && still >= frames)
+    throw RenderError(options.still_path + ": frame " + std::to_string(still) + " of a video of " +
+                      std::to_string(frames) + " frames");
   for (int f = 0; f < frames; ++f) {
     for (int r = 0; r < layout.rows; ++r)
       for (int c = 0; c < layout.cols; ++c) {
@@ -106,6 +121,8 @@ std::vector<ReplayReport> write_episode_video(const Env& prototype, const std::v
         renderer.draw(r, c, replay.data(), replay.caption());
       }
     video.write(renderer.read().data());
+    if (f == still && !options.still_path.empty())
+      write_png(options.still_path, layout.width(), layout.height(), renderer.read().data());
     if (progress) progress->advance();
   }
   video.finish();

@@ -7,11 +7,14 @@
 // with execution noise, or imported from another tool) says by how much it departs.
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "data/demos.h"
 #include "env/env.h"
+#include "env/mujoco_env.h"
 #include "render/frame_renderer.h"
 
 namespace vaegail {
@@ -23,15 +26,28 @@ namespace vaegail::render {
 // An episode and the caption of its tile. The episode needs its seed, context (empty: the
 // environment's own) and actions [T, act_dim]; observations [T+1, obs_dim], when present,
 // are compared with the replay's.
+//
+// An episode recorded by a controller acting at every physics step (MujocoEnv::step_controlled:
+// the humanoid's gait controllers) stores, as its actions, the mean control of each step; held
+// for a whole control step they leave its path within about a second. Such a clip carries the
+// demonstrator, made for the replay's model right after the reset, and the replay runs it again
+// (deterministic physics: the same states, checked against the recorded observations).
+using DemonstratorFactory = std::function<std::unique_ptr<PhysicsStepController>(const mjModel* model)>;
+
 struct Clip {
   std::string caption;
   Episode episode;
+  DemonstratorFactory demonstrator;  // empty: the recorded actions are stepped
 };
 
 struct VideoOptions {
   int tile_width = 320, tile_height = 240;  // pixels per tile, even
   int fps = 0;  // 0: real time, 1 / the control step (rounded): 40 for the walker
   CameraOptions camera;
+  // Also one frame as a PNG (render/png_writer.h), the still a page shows: frame `still_frame`
+  // (0: the initial states), or the video's middle one when negative. Empty path: none.
+  std::string still_path;
+  int still_frame = -1;
 };
 
 struct ReplayReport {

@@ -12,6 +12,7 @@ extern "C" {
 #include "data/record.h"
 #include "env/registry.h"
 #include "render/mp4_writer.h"
+#include "util/atomic_file.h"
 #include "util/test_small_fs.h"
 
 namespace vaegail::render {
@@ -99,6 +100,57 @@ TEST_F(EpisodeVideo, DecodesWithTheRequestedFramesSizeAndRate) {
   EXPECT_EQ(reports[1].steps, 5);
   // Nothing but the video is left behind.
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+// The PNG's size, and its pixels as RGB bytes.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgb;
+};
+
+Image decode_png(const std::string& path) {
+  const std::string bytes = read_file(path);
+  const AVCodec* codec = avcodec_find_decoder(AV_CODEC_ID_PNG);
+  AVCodecContext* decoder = avcodec_alloc_context3(codec);
+  avcodec_open2(decoder, codec, nullptr);
+  AVPacket* packet = av_packet_alloc();
+  av_new_packet(packet, static_cast<int>(bytes.size()));
+  std::copy(bytes.begin(), bytes.end(), packet->data);
+  AVFrame* frame = av_frame_alloc();
+  Image image;
+  if (avcodec_send_packet(decoder, packet) == 0 && avcodec_receive_frame(decoder, frame) == 0 &&
+      frame->format == AV_PIX_FMT_RGB24) {
+    image.width = frame->width;
+    image.height = frame->height;
+    for (int y = 0; y < frame->height; ++y)
+      image.rgb.insert(image.rgb.end(), frame->data[0] + y * frame->linesize[0],
+                       frame->data[0] + y * frame->linesize[0] + 3 * frame->width);
+  }
+  av_frame_free(&frame);
+  av_packet_free(&packet);
+  avcodec_free_context(&decoder);
+  return image;
+}
+
+TEST_F(EpisodeVideo, AStillIsTheFrameAskedForAsAPng) {
+  const std::vector<std::vector<Clip>> grid{{{"a", episodes[0]}, {"b", episodes[1]}}};
+  VideoOptions options;
+  options.tile_width = 96;
+  options.tile_height = 64;
+  const auto still_at = [&](int frame, const std::string& name) {
+    options.still_path = (dir / name).string();
+    options.still_frame = frame;
+    write_episode_video(*env, grid, options, (dir / "v.mp4").string());
+    return decode_png(options.still_path);
+  };
+  const Image middle = still_at(-1, "middle.png"), sixth = still_at(6, "sixth.png"), first = still_at(0, "first.png");
+  EXPECT_EQ(middle.width, 2 * 96);
+  EXPECT_EQ(middle.height, 64);
+  EXPECT_EQ(middle.rgb.size(), 2u * 96 * 64 * 3);
+  EXPECT_EQ(middle.rgb, sixth.rgb);  // 13 frames: the middle one is frame 6
+  EXPECT_NE(first.rgb, sixth.rgb);   // the bodies moved
+  options.still_frame = 13;
+  EXPECT_THROW(write_episode_video(*env, grid, options, (dir / "v.mp4").string()), RenderError);
 }
 
 TEST_F(EpisodeVideo, RealTimeIsOneFramePerControlStep) {
