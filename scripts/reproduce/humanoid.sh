@@ -13,6 +13,9 @@
 #   demos  data/humanoid/train.h5 (250 episodes of the six training controllers) and data/humanoid/eval.h5 (250 of
 #          the five evaluation controllers), 334 steps each, clean, style as context; `data info` and `demos styles`
 #          (the nearest-centroid style classifier) of each into results/humanoid/: about 3 minutes
+#   video  one demonstration of each of the eleven styles side by side (`render --styles`: each replayed by its own
+#          controller), results/humanoid/styles.mp4 (not committed) and its still docs/figures/humanoid_styles.png:
+#          about 5 minutes
 #   all    every stage above in order
 # The style files are committed with their tuned parameters, so `controllers demos` regenerates every published humanoid
 # figure; the demonstration files are not committed (they are remade in minutes). --dry-run prints the commands.
@@ -49,4 +52,13 @@ demos() {
   done
 }
 
-run_stages tune controllers demos
+video() {
+  local all=("${train_styles[@]}" "${eval_styles[@]}")
+  run $v demos collect --task humanoid --styles "${all[@]}" --episodes-per-expert ${#all[@]} --threads 2 \
+    --out data/humanoid/styles.h5 --force
+  run $v render --demos data/humanoid/styles.h5 --episodes $(seq -s ' ' 0 $((${#all[@]} - 1))) --styles "${all[@]}" \
+    --columns 4 --azimuth 120 --elevation -15 --out results/humanoid/styles.mp4 \
+    --still docs/figures/humanoid_styles.png --still-frame 200
+}
+
+run_stages tune controllers demos video

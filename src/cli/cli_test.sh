@@ -263,9 +263,15 @@ expect_error "--gail needs --vae" "$tmp/r.mp4" -- render --demos "$tmp/one.h5" -
 run_in "$tmp/elsewhere" render --demos "$tmp/body.h5" --episodes 0 1 --vae "$tmp/body_vae/checkpoints/latest.pt" \
   --gail "$tmp/body_gail" --width 64 --height 48 --out "$tmp/body.mp4"
 [ -s "$tmp/body.mp4" ] || fail "render of a body of one's own: no video"
-run_in "$tmp" render --demos "$tmp/h.h5" --episodes 0 --expert "$tmp/h/humanoid_ctx0_3_logstd-1_seed0" \
-  --width 64 --height 48 --out "$tmp/humanoid.mp4"
-[ -s "$tmp/humanoid.mp4" ] || fail "render of a humanoid demonstration and its expert: no video"
+# A gait controller's demonstration is replayed by the controller itself (--styles): no departure note.
+"$v" render --demos "$tmp/h.h5" --episodes 0 --styles "${styles[@]}" --expert "$tmp/h/humanoid_ctx0_3_logstd-1_seed0" \
+  --width 64 --height 48 --out "$tmp/humanoid.mp4" --still "$tmp/humanoid.png" > "$tmp/stdout" 2>&1
+[ -s "$tmp/humanoid.mp4" ] && [ -s "$tmp/humanoid.png" ] && ! grep -q "departs" "$tmp/stdout" ||
+  fail "render --styles of a humanoid demonstration and its expert: $(cat "$tmp/stdout")"
+expect_error "--columns lays out demonstrations alone" "$tmp/c.mp4" -- render --demos "$tmp/h.h5" --episodes 0 1 \
+  --columns 2 --expert "$tmp/h/humanoid_ctx0_3_logstd-1_seed0" --out "$tmp/c.mp4"
+expect_error "its expert id 'train/old' is none of the --styles files' labels" "$tmp/c.mp4" -- \
+  render --demos "$tmp/h.h5" --episodes 0 --styles "${styles[1]}" --out "$tmp/c.mp4"
 
 echo "$helped commands answered --help; $failures failure(s)"
 [ "$failures" -eq 0 ]

@@ -404,15 +404,18 @@ void run_styles(const std::string& path) {
     if (known == names.end()) names.push_back(e.expert_id);
   }
   const Confusion confusion = split_half_confusion(rows, labels);
-  std::printf("%-13s", "true \\ named");
-  for (const auto& [style, row] : confusion) std::printf(" %8s", names.at(style).c_str());
+  // A Markdown table (docs/ quotes it): a row per true style, a column per style named.
+  std::printf("| true \\ named |");
+  for (const auto& [style, row] : confusion) std::printf(" %s |", names.at(style).c_str());
+  std::printf("\n| --- |");
+  for (size_t k = 0; k < confusion.size(); ++k) std::printf(" ---: |");
   std::printf("\n");
   int named_episodes = 0;
   for (const auto& [style, row] : confusion) {
-    std::printf("%-13s", names.at(style).c_str());
+    std::printf("| %s |", names.at(style).c_str());
     for (const auto& [named, unused] : confusion) {
       const auto count = row.find(named);
-      std::printf(" %8d", count == row.end() ? 0 : count->second);
+      std::printf(" %d |", count == row.end() ? 0 : count->second);
       named_episodes += count == row.end() ? 0 : count->second;
     }
     std::printf("\n");
