@@ -190,7 +190,7 @@ expect_error "$tmp/style.json: target 'grace' is not a style measure" "" -- expe
 # ---- the humanoid's gait controllers: experts eval --styles -----------------------------
 "$v" experts eval --task humanoid --styles "$root/configs/humanoid_styles/train/walk.json" --episodes 1 \
   --replay --raw-seconds 0.2 --csv "$tmp/gait.csv" --json "$tmp/gait.json" > "$tmp/stdout" 2>&1 &&
-  grep -qE "^walk  *1/1  *[01]/1 " "$tmp/stdout" && grep -q "ratio" "$tmp/stdout" && [ "$(wc -l < "$tmp/gait.csv")" -eq 2 ] &&
+  grep -qE "^train/walk  *1/1  *[01]/1 " "$tmp/stdout" && grep -q "ratio" "$tmp/stdout" && [ "$(wc -l < "$tmp/gait.csv")" -eq 2 ] &&
   grep -q '"pushed_falls": [01]' "$tmp/gait.json" || fail "experts eval --styles: $(cat "$tmp/stdout")"
 echo '{"parameters": {"sped": 1}}' > "$tmp/typo.json"
 expect_error "typo.json: 'sped' is not a gait parameter" "" -- experts eval --styles "$tmp/typo.json"

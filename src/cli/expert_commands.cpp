@@ -218,7 +218,7 @@ struct EvalFlags {
   std::vector<std::string> styles;   // humanoid gait controllers' style files
   GaitEvalOptions gait;
   std::string csv_out;
-  double raw_seconds = 3.0;          // measuring time of the raw physics figure
+  double raw_seconds = 2.0;          // measuring time of each style's raw physics figure
 };
 
 // Arm experts keep their noise-free evaluation (the start and the actor are deterministic).
@@ -237,25 +237,25 @@ void run_eval_arm(const std::vector<std::string>& dirs, const std::string& json_
   if (!json_out.empty()) write_file_atomically(json_out, report.dump(2));
 }
 
-// The gait controllers of style files, each over the same starts, then the raw physics figure of
-// the same model in the same run, so that the two rates compare.
+// The gait controllers of style files, each over the same starts and followed by the raw physics
+// figure of the same model, so that the two rates compare under the same load.
 void run_gait_eval(const EvalFlags& f) {
   if (!f.task.empty() && f.task != "humanoid")
     throw std::invalid_argument("experts eval --styles: gait controllers drive the humanoid, not --task " + f.task);
-  std::vector<std::pair<std::string, GaitParameters>> styles;
-  for (const auto& path : f.styles) styles.emplace_back(fs::path(path).stem().string(), read_gait_style(path));
+  std::vector<GaitDemonstrator> styles;
+  for (const auto& path : f.styles) styles.push_back(read_gait_demonstrator(path));
   Progress progress("eval", static_cast<std::int64_t>(styles.size()) * f.gait.episodes, "starts");
   std::vector<GaitStyleEvaluation> results;
-  for (const auto& [name, parameters] : styles) {
-    progress.set_status(name);
-    results.push_back(evaluate_gait_style(name, parameters, f.gait, [&] { progress.advance(); }));
+  const HumanoidEnv env;
+  for (const auto& style : styles) {
+    progress.set_status(style.label);
+    results.push_back(evaluate_gait_style(style.label, style.parameters, f.gait, [&] { progress.advance(); }));
+    if (f.raw_seconds > 0)
+      results.back().raw_control_steps_per_s =
+          raw_physics_steps_per_s(env, f.raw_seconds) * env.model()->opt.timestep / env.control_timestep();
   }
   progress.finish();
-  const HumanoidEnv env;
-  const double raw = f.raw_seconds > 0 ? raw_physics_steps_per_s(env, f.raw_seconds) * env.model()->opt.timestep /
-                                             env.control_timestep()
-                                       : 0;
-  std::fputs(format_gait_evaluations(results, raw).c_str(), stdout);
+  std::fputs(format_gait_evaluations(results).c_str(), stdout);
   if (!f.csv_out.empty()) {
     std::string csv = "style";
     for (const auto& [column, value] : gait_evaluation_row(results.front())) csv += "," + column;
@@ -263,14 +263,14 @@ void run_gait_eval(const EvalFlags& f) {
     for (const auto& e : results) {
       csv += e.name;
       for (const auto& [column, value] : gait_evaluation_row(e)) csv += fmt::format(",{}", value);
-      csv += fmt::format(",{}\n", raw);
+      csv += fmt::format(",{}\n", e.raw_control_steps_per_s);
     }
     write_file_atomically(f.csv_out, csv);
   }
   if (!f.json_out.empty()) {
     nlohmann::json report = nlohmann::json::array();
     for (const auto& e : results) {
-      nlohmann::json row = {{"style", e.name}, {"parameters", e.parameters}, {"raw_control_steps_per_s", raw}};
+      nlohmann::json row = {{"style", e.name}, {"parameters", e.parameters}, {"raw_control_steps_per_s", e.raw_control_steps_per_s}};
       for (const auto& [column, value] : gait_evaluation_row(e)) row[column] = value;
       report.push_back(row);
     }
@@ -465,7 +465,7 @@ void add_expert_commands(CLI::App& app) {
   eval->add_option("--push-duration", e->gait.episode.push_duration, "--styles: each push's duration (s)")->check(CLI::Range(0.0, 10.0))->capture_default_str();
   eval->add_flag("--replay", e->gait.replay, "--styles: also the held-mean replay figure per start (control steps until the root is 0.1 m off when the recorded mean actions are replayed held)");
   eval->add_option("--csv", e->csv_out, "--styles: also write one row per style here");
-  eval->add_option("--raw-seconds", e->raw_seconds, "--styles: seconds of bare mj_step measured after the episodes, for the raw physics figure (0: skip)")
+  eval->add_option("--raw-seconds", e->raw_seconds, "--styles: seconds of bare mj_step measured after each style's episodes, for its raw physics figure (0: skip)")
       ->check(CLI::Range(0.0, 600.0))->capture_default_str();
   eval->callback([e, eval] {
     if (!e->styles.empty()) {

@@ -3,6 +3,7 @@
 #include "experts/gait_episode.h"
 #include "experts/gait_eval.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -75,9 +76,12 @@ TEST(GaitEval, AStyleIsWalkedFromEachStartWithAndWithoutPushesAndItsMeansReporte
   const auto row = gait_evaluation_row(e);
   EXPECT_EQ(row.front().first, "episodes");
   EXPECT_EQ(row.back().first, "signature_arm_swing");
-  const std::string table = format_gait_evaluations({e}, 2000.0);
+  GaitStyleEvaluation measured = e;
+  measured.raw_control_steps_per_s = 2000.0;
+  const std::string table = format_gait_evaluations({e, measured});
   EXPECT_NE(table.find("walk                2/2      2/2"), std::string::npos) << table;
-  EXPECT_NE(table.find("ratio"), std::string::npos);
+  EXPECT_EQ(table.find("ratio"), table.rfind("ratio"));  // only the style whose raw figure was measured
+  EXPECT_NE(table.find(fmt::format("ratio {:.2f}", e.control_steps_per_s / 2000.0)), std::string::npos) << table;
 }
 
 }  // namespace

@@ -52,7 +52,7 @@ GaitStyleEvaluation evaluate_gait_style(const std::string& name, const GaitParam
   return e;
 }
 
-std::string format_gait_evaluations(const std::vector<GaitStyleEvaluation>& evaluations, double raw) {
+std::string format_gait_evaluations(const std::vector<GaitStyleEvaluation>& evaluations) {
   std::string out = fmt::format("{:<16} {:>6} {:>8} {:>7} {:>8} {:>8} {:>8} {:>8} {:>7} {:>8} {:>7} {:>10} {:>11}\n",
                                 "style", "up", "pushed up", "speed", "step L", "cadence", "step W", "pelvis z", "drift",
                                 "|head e|", "effort", "ctrl st/s", "replay");
@@ -75,10 +75,11 @@ std::string format_gait_evaluations(const std::vector<GaitStyleEvaluation>& eval
   out += "\nspeed, step L(ength), cadence (steps/min), step W(idth), pelvis z, |lateral drift|, |heading error| and\n"
          "effort (mean action^2) are means over the episodes without pushes; replay: control steps until the root\n"
          "is 0.1 m off when the recorded mean actions are replayed held (mean, min-max).\n";
-  if (raw > 0)
-    for (const auto& e : evaluations)
-      out += fmt::format("{}: {:.0f} control steps/s with the controller, {:.0f} raw mj_step (same run): ratio {:.2f}\n",
-                         e.name, e.control_steps_per_s, raw, e.control_steps_per_s / raw);
+  for (const auto& e : evaluations)
+    if (e.raw_control_steps_per_s > 0)
+      out += fmt::format("{}: {:.0f} control steps/s with the controller, {:.0f} raw mj_step right after: ratio {:.2f}\n",
+                         e.name, e.control_steps_per_s, e.raw_control_steps_per_s,
+                         e.control_steps_per_s / e.raw_control_steps_per_s);
   return out;
 }
 

@@ -34,6 +34,9 @@ struct GaitStyleEvaluation {
   double heading_error = 0, effort = 0;
   GaitSignature signature{};
   double control_steps_per_s = 0;  // every episode's control steps over the time they took
+  // Bare mj_step of the same model in control steps/s, measured right after the style's episodes
+  // so that both rates see the same load (0: not measured).
+  double raw_control_steps_per_s = 0;
   // held_mean_replay_steps over the starts (0 when not measured).
   double replay_mean = 0;
   int replay_min = 0, replay_max = 0;
@@ -43,9 +46,9 @@ struct GaitStyleEvaluation {
 GaitStyleEvaluation evaluate_gait_style(const std::string& name, const GaitParameters& parameters,
                                         const GaitEvalOptions& options, const std::function<void()>& episode_done = {});
 
-// The table `experts eval --styles` prints: one row per style, then the signatures; with the
-// raw physics figure (control steps/s of bare mj_step, measured beside it) when > 0.
-std::string format_gait_evaluations(const std::vector<GaitStyleEvaluation>& evaluations, double raw_control_steps_per_s);
+// The table `experts eval --styles` prints: one row per style, then the signatures, then each
+// style's control steps/s against its raw physics figure where that was measured.
+std::string format_gait_evaluations(const std::vector<GaitStyleEvaluation>& evaluations);
 
 // One flat row of a style's numbers by column name (the CSV's and the JSON's), signature
 // statistics prefixed "signature_".
