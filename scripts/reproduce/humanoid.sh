@@ -5,11 +5,11 @@
 #
 # Usage: scripts/reproduce/humanoid.sh [--dry-run] [STAGE...]   (default: controllers demos)
 #   tune   CMA-ES over each style's parameters from its file's 'tune' section (`experts tune`, 2 candidates at once),
-#          the result written into the style file; resumable from runs/tune/SET_STYLE: 10-25 minutes a style on
+#          the result written into the style file; resumable from runs/tune/SET_STYLE: 5-10 minutes a style on
 #          2 idle cores, the evaluation set's drunk and old after its normal (they start from it)
 #   controllers  `experts eval --task humanoid --styles`: per style, 20 ten-second episodes from perturbed starts without
 #          and with a 200 N push, gait measures, signature, control steps/s against raw physics, the held-mean
-#          replay figure, into results/humanoid/controllers.{txt,csv,json}: about 2 minutes
+#          replay figure, into results/humanoid/controllers.{txt,csv,json}: about 10 minutes
 #   demos  data/humanoid/train.h5 (250 episodes of the six training controllers) and data/humanoid/eval.h5 (250 of
 #          the five evaluation controllers), 334 steps each, clean, style as context; `data info` and `demos styles`
 #          (the nearest-centroid style classifier) of each into results/humanoid/: about 3 minutes
