@@ -16,6 +16,14 @@ EnvSlice EnvSlice::of_world(int total) {
   return {world.rank() * count, count, total};
 }
 
+EnvSlice EnvSlice::share(int total, int rank, int ranks) {
+  if (total < 0 || ranks < 1 || rank < 0 || rank >= ranks)
+    throw std::invalid_argument("EnvSlice::share: rank " + std::to_string(rank) + " of " + std::to_string(ranks) +
+                                " ranks cannot hold a share of " + std::to_string(total) + " rows");
+  const auto bound = [&](int r) { return static_cast<int>(static_cast<std::int64_t>(r) * total / ranks); };
+  return {bound(rank), bound(rank + 1) - bound(rank), total};
+}
+
 RowSlice RowSlice::whole(std::int64_t size) { return {torch::arange(size, torch::kLong), size}; }
 
 RowSlice RowSlice::of_rollout(std::int64_t steps, const EnvSlice& slice) {

@@ -17,7 +17,7 @@
 
 namespace vaegail {
 
-// This rank's environments: global indices [first, first + count) of `total`.
+// This rank's environments (or rows of a batch): global indices [first, first + count) of `total`.
 struct EnvSlice {
   int first = 0;
   int count = 0;
@@ -26,6 +26,10 @@ struct EnvSlice {
   // be a multiple of the world's size: std::invalid_argument otherwise).
   static EnvSlice of_world(int total);
   static EnvSlice whole(int total) { return {0, total, total}; }
+  // Rank `rank` of `ranks`'s share of `total` rows that need not divide evenly (the VAE's
+  // minibatches, whose last one is short): [rank·total/ranks, (rank+1)·total/ranks), contiguous
+  // and in rank order, the counts differing by at most one (a rank holds none when total < ranks).
+  static EnvSlice share(int total, int rank, int ranks);
 };
 
 // This rank's rows of a batch of `global_size` rows: global_rows [B] (long, CPU) gives each

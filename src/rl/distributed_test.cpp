@@ -27,6 +27,24 @@ TEST(EnvSlice, OneProcessHoldsEveryEnvironment) {
   EXPECT_THROW(EnvSlice::of_world(0), std::invalid_argument);
 }
 
+TEST(EnvSlice, UnevenSharesAreContiguousInRankOrderAndDifferByAtMostOne) {
+  const auto shares = [](int total, int ranks) {
+    std::vector<std::pair<int, int>> out;
+    for (int r = 0; r < ranks; ++r) {
+      const EnvSlice s = EnvSlice::share(total, r, ranks);
+      EXPECT_EQ(s.total, total);
+      out.emplace_back(s.first, s.count);
+    }
+    return out;
+  };
+  EXPECT_EQ(shares(5, 2), (std::vector<std::pair<int, int>>{{0, 2}, {2, 3}}));
+  EXPECT_EQ(shares(16, 2), (std::vector<std::pair<int, int>>{{0, 8}, {8, 8}}));
+  EXPECT_EQ(shares(7, 3), (std::vector<std::pair<int, int>>{{0, 2}, {2, 2}, {4, 3}}));
+  EXPECT_EQ(shares(1, 3), (std::vector<std::pair<int, int>>{{0, 0}, {0, 0}, {0, 1}}));
+  EXPECT_EQ(shares(4, 1), (std::vector<std::pair<int, int>>{{0, 4}}));
+  EXPECT_THROW(EnvSlice::share(4, 2, 2), std::invalid_argument);
+}
+
 TEST(RowSlice, ARolloutsRowsAreTimeMajorOverTheRunsEnvironments) {
   // Step t of the run's environment e is row t * 4 + e.
   EXPECT_EQ(values(RowSlice::of_rollout(3, kSecondHalf).global_rows), (std::vector<int64_t>{2, 3, 6, 7, 10, 11}));
