@@ -1,17 +1,16 @@
 // Ranks (util/world.h, rl/distributed.h): K ranks of a run train what one process with all its
 // environments trains, and a run resumes under another rank count. The test binary runs itself
-// under mpirun (the RankShare case below is the ranks' program), as CI runs as root with
-// OpenMPI's permission for it.
+// under mpirun (the RankShare case below is the ranks' program; util/test_ranks.h).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "env/walker.h"
 #include "gail/diverse_gail.h"
 #include "gail/test_support.h"
+#include "util/test_ranks.h"
 #include "util/world.h"
 
 namespace vaegail {
@@ -51,20 +50,12 @@ class DistributedGailTest : public ::testing::Test {
 
   // This test binary's RankShare case on `ranks` ranks, training run_dir to `iterations`.
   void train_on_ranks(int ranks, const fs::path& run_dir, int iterations) {
-    const fs::path log = dir / "mpirun.log";
     fs::create_directories(dir);
-    std::ostringstream command;
-    // OpenMPI leaks by design: in the sanitizer build (docs/sanitizers.md) the ranks run without
-    // the leak check, which would fail them at exit; this process keeps it.
-    command << "ASAN_OPTIONS=${ASAN_OPTIONS:-}:detect_leaks=0 ";
-    command << "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " << kRunDirVariable << "=" << run_dir << " "
-            << kIterationsVariable << "=" << iterations << " mpirun -np " << ranks << " --oversubscribe -x "
-            << kRunDirVariable << " -x " << kIterationsVariable << " " << fs::read_symlink("/proc/self/exe")
-            << " --gtest_filter=DistributedGailTest.RankShare > " << log << " 2>&1";
-    const int status = std::system(command.str().c_str());
-    std::ifstream in(log);
-    const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    ASSERT_EQ(status, 0) << command.str() << "\n" << output;
+    const std::string failure =
+        run_case_on_ranks(ranks, "DistributedGailTest.RankShare",
+                          {{kRunDirVariable, run_dir.string()}, {kIterationsVariable, std::to_string(iterations)}},
+                          dir / "mpirun.log");
+    ASSERT_TRUE(failure.empty()) << failure;
   }
 
   std::unique_ptr<WalkerEnv> env;
@@ -73,8 +64,6 @@ class DistributedGailTest : public ::testing::Test {
   GailOptions options;
   fs::path dir;
 };
-
-bool have_mpirun() { return world_supports_mpi() && std::system("command -v mpirun > /dev/null 2>&1") == 0; }
 
 // A copy of every parameter and buffer of the run's agent and discriminator, by name.
 std::map<std::string, torch::Tensor> snapshot_of(GailTrainer& t) {
