@@ -111,9 +111,9 @@ double TrajectoryVaeImpl::action_log_jacobian() const {
 }
 
 torch::Tensor TrajectoryVaeImpl::encoder_input(const torch::Tensor& x, const torch::Tensor& state_mask,
-                                               bool add_noise) const {
-  auto in = encoder_index_.defined() ? x.index_select(2, encoder_index_.to(x.device())) : x;
-  if (add_noise && config_.encoder_input_noise > 0) in = in + config_.encoder_input_noise * torch::randn_like(in);
+                                               const torch::Tensor& noise) const {
+  const auto noisy = noise.defined() ? x + config_.encoder_input_noise * noise : x;
+  auto in = encoder_index_.defined() ? noisy.index_select(2, encoder_index_.to(x.device())) : noisy;
   if (state_mask.defined())
     in = torch::where(state_mask.to(torch::kBool).unsqueeze(-1), in, torch::zeros_like(in));
   return in;
@@ -121,7 +121,7 @@ torch::Tensor TrajectoryVaeImpl::encoder_input(const torch::Tensor& x, const tor
 
 EncoderOutput TrajectoryVaeImpl::encode(const torch::Tensor& states,
                                         const torch::Tensor& state_mask) {
-  return encoder_->forward(encoder_input(normalize_states(states), state_mask, false), state_mask);
+  return encoder_->forward(encoder_input(normalize_states(states), state_mask, {}), state_mask);
 }
 
 TrajectoryVaeImpl::Prepared TrajectoryVaeImpl::prepare(const torch::Tensor& states, const torch::Tensor& actions,
@@ -168,9 +168,15 @@ DecoderNll TrajectoryVaeImpl::decoder_nll(const torch::Tensor& states, const tor
 }
 
 VaeLoss TrajectoryVaeImpl::loss(const torch::Tensor& states, const torch::Tensor& actions,
-                                const torch::Tensor& mask, const torch::Tensor& noise) {
+                                const torch::Tensor& mask, const torch::Tensor& noise,
+                                const torch::Tensor& encoder_noise) {
   const auto p = prepare(states, actions, mask);
-  const auto q = encoder_->forward(encoder_input(p.x, p.state_mask, is_training()), p.state_mask);
+  torch::Tensor input_noise;
+  if (is_training() && config_.encoder_input_noise > 0) {
+    input_noise = encoder_noise.defined() ? encoder_noise.to(p.x.device()) : torch::randn_like(p.x);
+    TORCH_CHECK(input_noise.sizes() == p.x.sizes(), "TrajectoryVae::loss: encoder_noise must be [B, T+1, D]");
+  }
+  const auto q = encoder_->forward(encoder_input(p.x, p.state_mask, input_noise), p.state_mask);
   const auto eps = noise.defined() ? noise.to(q.mean.device()) : torch::randn_like(q.mean);
   TORCH_CHECK(eps.sizes() == q.mean.sizes(), "TrajectoryVae::loss: noise must be [B, Z]");
   const auto nll = decoder_nll(p, reparameterize(q.mean, q.log_std, eps));

@@ -58,10 +58,13 @@ class TrajectoryVaeImpl : public torch::nn::Module {
   void set_normalization(const torch::Tensor& state_mean, const torch::Tensor& state_std,
                          const torch::Tensor& action_mean, const torch::Tensor& action_std);
 
-  // The loss of a batch. noise [B, Z] ~ N(0, I) for the reparameterised z; undefined: drawn
-  // with torch's default generator on the model's device.
+  // The loss of a batch. noise [B, Z] ~ N(0, I) for the reparameterised z; encoder_noise
+  // [B, T+1, D] ~ N(0, I) for the encoder's input (read only when training with
+  // encoder_input_noise > 0). Undefined: drawn with torch's default generator on the model's
+  // device. A trainer passes both so that a row's draws do not depend on the rows beside it.
   VaeLoss loss(const torch::Tensor& states, const torch::Tensor& actions,
-               const torch::Tensor& mask = {}, const torch::Tensor& noise = {});
+               const torch::Tensor& mask = {}, const torch::Tensor& noise = {},
+               const torch::Tensor& encoder_noise = {});
 
   // The decoders' likelihood of a batch (as loss()) at a given z [B, Z] instead of a sample of q.
   DecoderNll decoder_nll(const torch::Tensor& states, const torch::Tensor& actions, const torch::Tensor& z,
@@ -110,8 +113,9 @@ class TrajectoryVaeImpl : public torch::nn::Module {
   // without offsets.
   torch::Tensor offset_index_;
   // What the encoder reads of normalised states x [B, S, D]: the encoder_state_indices
-  // components (all without), plus encoder_input_noise when add_noise, zero on padding.
-  torch::Tensor encoder_input(const torch::Tensor& x, const torch::Tensor& state_mask, bool add_noise) const;
+  // components (all without) of x + encoder_input_noise * noise (noise [B, S, D] or undefined:
+  // none), zero on padding.
+  torch::Tensor encoder_input(const torch::Tensor& x, const torch::Tensor& state_mask, const torch::Tensor& noise) const;
   torch::Tensor encoder_index_;  // the encoder_state_indices as offset_index_; undefined: all
 };
 TORCH_MODULE(TrajectoryVae);

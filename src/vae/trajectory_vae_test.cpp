@@ -79,6 +79,10 @@ TEST_F(TrajectoryVaeTest, EncoderInputNoiseReachesOnlyTheEncoderAndOnlyInTrainin
     action_lp += vae->action_decoder()->log_prob(x.select(1, t), z, a.select(1, t)).sum().item<double>();
   EXPECT_NEAR(noisy.action_nll.item<double>(), -action_lp / 2, 1e-3);  // the decoder saw clean states
   EXPECT_NEAR(noisy.kl.item<double>(), kl_to_standard_normal(q.mean, q.log_std).mean().item<double>(), 1e-4);
+  // The same draw passed in (as the trainer does, to slice one draw over ranks).
+  torch::manual_seed(21);
+  const auto given = vae->loss(states, actions, {}, eps, torch::randn_like(x));
+  EXPECT_NEAR(given.kl.item<double>(), noisy.kl.item<double>(), 1e-6);
 
   vae->eval();
   const auto clean = vae->loss(states, actions, {}, eps);
