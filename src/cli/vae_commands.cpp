@@ -19,6 +19,7 @@
 #include "eval/embedding.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
+#include "util/world.h"
 #include "vae/action_error.h"
 #include "vae/demo_dataset.h"
 #include "vae/imitation.h"
@@ -122,6 +123,8 @@ void run_vae_train(const VaeTrainFlags& f) {
   options.device = parse_device(f.device);
   options.keep_epochs = f.keep_epochs;
   vae::VaeTrainer trainer(config, options, data.train, data.val);
+  if (World::get().distributed())
+    std::printf("%d ranks share each batch of %d trajectories\n", World::get().size(), config.batch_size);
   if (trainer.epoch() > 0) std::printf("resuming %s after epoch %d\n", f.run_dir.c_str(), trainer.epoch());
   while (trainer.epoch() < f.epochs) {
     const auto m = trainer.train_epoch();
@@ -150,6 +153,10 @@ void add_train(CLI::App& vae) {
   c->add_option("--seed", f->seed, "initialisation, shuffling, noise and the validation split")->capture_default_str();
   c->add_flag("--keep-epochs", f->keep_epochs, "also keep every epoch's checkpoint as checkpoints/epoch_N.pt");
   add_device_option(*c, f->device, kDeviceHelp);
+  c->footer(
+      "On K cores: mpirun -np K vaegail vae train ... (K processes share each batch and train what one\n"
+      "process trains; rank 0 writes the run directory; a run resumes under any K). As root, OpenMPI\n"
+      "asks for OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 in the environment.");
   c->callback([f] { run_vae_train(*f); });
 }
 

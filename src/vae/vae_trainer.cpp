@@ -8,28 +8,39 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "rl/distributed.h"
 #include "util/atomic_file.h"
 #include "util/checkpoint_file.h"
 #include "util/csv_log.h"
 #include "util/progress.h"
 #include "util/rng.h"
 #include "util/malloc_tuning.h"
+#include "util/world.h"
 
 namespace vaegail::vae {
 
 namespace {
 
 // Random streams, each derived from (seed, stream) and then per epoch / batch.
-enum Stream : uint64_t { kInit = 1, kShuffle = 2, kNoise = 3, kEval = 4 };
+enum Stream : uint64_t { kInit = 1, kShuffle = 2, kNoise = 3, kEval = 4, kEncoderNoise = 5 };
 
 uint64_t stream_seed(uint64_t seed, Stream stream, uint64_t a, uint64_t b = 0) {
   return derive_seed(derive_seed(derive_seed(seed, stream), a), b);
 }
 
-torch::Tensor standard_normal(int64_t rows, int64_t cols, uint64_t seed,
+// N(0, I) noise of a whole batch, [rows.total, dims...], drawn from `seed`; this rank's rows of it.
+// Drawn whole and sliced, so that a row's noise does not depend on how many ranks share the batch.
+torch::Tensor standard_normal(const EnvSlice& rows, std::vector<int64_t> dims, uint64_t seed,
                               const torch::Device& device) {
   auto gen = at::detail::createCPUGenerator(seed);
-  return at::randn({rows, cols}, gen, torch::TensorOptions(torch::kFloat)).to(device);
+  dims.insert(dims.begin(), rows.total);
+  return at::randn(dims, gen, torch::TensorOptions(torch::kFloat)).narrow(0, rows.first, rows.count).to(device);
+}
+
+// This rank's share of a batch of n rows (all of them in a world of one).
+EnvSlice rank_share(int64_t n) {
+  const World& world = World::get();
+  return EnvSlice::share(static_cast<int>(n), world.rank(), world.size());
 }
 
 // metrics.csv's columns, in the order existing files have them.
@@ -51,6 +62,21 @@ void accumulate(LossTerms& sum, const VaeLoss& loss, double weight) {
   sum.action_nll += weight * loss.action_nll.item<double>();
   sum.state_nll += weight * loss.state_nll.item<double>();
   sum.kl += weight * loss.kl.item<double>();
+}
+
+// Sums over this rank's rows become sums over the run's.
+LossTerms summed_over_ranks(LossTerms t) {
+  double values[] = {t.total, t.action_nll, t.state_nll, t.kl};
+  World::get().sum(values, 4);
+  return {values[0], values[1], values[2], values[3]};
+}
+
+LossTerms added(LossTerms a, const LossTerms& b) {
+  a.total += b.total;
+  a.action_nll += b.action_nll;
+  a.state_nll += b.state_nll;
+  a.kl += b.kl;
+  return a;
 }
 
 LossTerms scaled(LossTerms t, double factor) {
@@ -115,11 +141,20 @@ VaeTrainer::VaeTrainer(const VaeConfig& config, TrainerOptions options, Trajecto
       model_->parameters(),
       torch::optim::AdamOptions(config_.learning_rate).weight_decay(config_.weight_decay));
 
-  lock_ = lock_run_directory(options_.run_dir);
-  std::filesystem::create_directories(std::filesystem::path(options_.run_dir) / "checkpoints");
-  if (std::filesystem::exists(checkpoint_path())) load_checkpoint(checkpoint_path());
-  truncate_metrics(metrics_path(), epoch_);  // rows past the checkpoint: the resumed run redoes them
-  config_.save((std::filesystem::path(options_.run_dir) / "config.json").string());
+  // Under mpirun every rank holds the whole model and data set (the same split, normalisation
+  // and initialisation: all seeded) and trains its share of each batch; rank 0 alone writes.
+  const World& world = World::get();
+  lock_ = lock_run_directory(options_.run_dir);  // rank 0's: the ranks are one writer
+  if (world.is_root())
+    std::filesystem::create_directories(std::filesystem::path(options_.run_dir) / "checkpoints");
+  // Every rank has read its command's files (`vae train` reads run_dir/config.json when
+  // resuming) before rank 0 writes any.
+  world.barrier();
+  if (std::filesystem::exists(checkpoint_path())) load_checkpoint(checkpoint_path());  // every rank
+  if (world.is_root()) {
+    truncate_metrics(metrics_path(), epoch_);  // rows past the checkpoint: the resumed run redoes them
+    config_.save((std::filesystem::path(options_.run_dir) / "config.json").string());
+  }
 }
 
 std::string VaeTrainer::checkpoint_path() const { return checkpoint_file("latest.pt"); }
@@ -165,19 +200,33 @@ EpochMetrics VaeTrainer::train_epoch() {
   for (auto& group : optimizer_->param_groups())
     static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
   model_->train();
+  const auto parameters = model_->parameters();
   LossTerms sum;
   for (int64_t b = 0; b < batches; ++b) {
     const int64_t n = std::min(bs, M - b * bs);
-    const auto batch = train_.select(perm.narrow(0, b * bs, n), options_.device);
-    const auto noise = standard_normal(n, config_.latent_dim, stream_seed(options_.seed, kNoise, e, b),
-                                       options_.device);
+    // This rank's rows of the batch; the batch's mean loss is the sum over every rank's rows / n.
+    const EnvSlice rows = rank_share(n);
     optimizer_->zero_grad();
-    const auto loss = model_->loss(batch.states, batch.actions, batch.mask, noise);
-    loss.total.backward();
+    LossTerms batch_sum;  // over this rank's rows
+    if (rows.count > 0) {
+      const auto batch = train_.select(perm.narrow(0, b * bs + rows.first, rows.count), options_.device);
+      const auto noise =
+          standard_normal(rows, {config_.latent_dim}, stream_seed(options_.seed, kNoise, e, b), options_.device);
+      const auto encoder_noise =
+          config_.encoder_input_noise > 0
+              ? standard_normal(rows, {train_.states.size(1), config_.state_dim},
+                                stream_seed(options_.seed, kEncoderNoise, e, b), options_.device)
+              : torch::Tensor();
+      const auto loss = model_->loss(batch.states, batch.actions, batch.mask, noise, encoder_noise);
+      (loss.total * (static_cast<double>(rows.count) / static_cast<double>(n))).backward();
+      accumulate(batch_sum, loss, static_cast<double>(rows.count));
+    }
+    all_sum_gradients(parameters);  // every rank then takes the same Adam step
     optimizer_->step();
-    accumulate(sum, loss, static_cast<double>(n));
+    batch_sum = summed_over_ranks(batch_sum);
+    sum = added(sum, batch_sum);
     if (progress) {
-      progress->set_status(fmt::format("loss {:.4g}", loss.total.item<double>()));
+      progress->set_status(fmt::format("loss {:.4g}", batch_sum.total / static_cast<double>(n)));
       progress->advance();
     }
   }
@@ -187,18 +236,21 @@ EpochMetrics VaeTrainer::train_epoch() {
   EpochMetrics m;
   m.epoch = e;
   m.train = scaled(sum, 1.0 / static_cast<double>(M));
+  m.train_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double nan = std::nan("");
   m.val = val_.size() > 0 ? evaluate(val_) : LossTerms{nan, nan, nan, nan};
   m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // The row first, then the checkpoint: a run killed between the two redoes the epoch on
   // resume (reproducibly) and replaces the row, rather than losing it.
-  Metrics row = {{"epoch", e}, {"seconds", m.seconds}};
-  add_loss_terms(row, "train", m.train);
-  add_loss_terms(row, "val", m.val);
-  CsvLog(metrics_path(), kMetricColumns).write(row);
-  save_checkpoint(checkpoint_path());
-  if (options_.keep_epochs) save_checkpoint(epoch_checkpoint_path(e));
+  if (World::get().is_root()) {
+    Metrics row = {{"epoch", e}, {"seconds", m.seconds}};
+    add_loss_terms(row, "train", m.train);
+    add_loss_terms(row, "val", m.val);
+    CsvLog(metrics_path(), kMetricColumns).write(row);
+    save_checkpoint(checkpoint_path());
+    if (options_.keep_epochs) save_checkpoint(epoch_checkpoint_path(e));
+  }
   return m;
 }
 
@@ -206,17 +258,18 @@ LossTerms VaeTrainer::evaluate(const TrajectoryDataset& data) {
   torch::NoGradGuard no_grad;
   model_->eval();
   const int64_t M = data.size(), bs = std::max(1, options_.eval_batch_size);
-  LossTerms sum;
+  LossTerms sum;  // over this rank's rows of every batch
   for (int64_t b = 0; b * bs < M; ++b) {
-    const int64_t n = std::min(bs, M - b * bs);
-    const auto batch = data.select(torch::arange(b * bs, b * bs + n), options_.device);
-    const auto noise = standard_normal(n, config_.latent_dim,
-                                       stream_seed(options_.seed, kEval, epoch_, b), options_.device);
+    const EnvSlice rows = rank_share(std::min(bs, M - b * bs));
+    if (rows.count == 0) continue;
+    const auto batch = data.select(torch::arange(b * bs + rows.first, b * bs + rows.first + rows.count), options_.device);
+    const auto noise =
+        standard_normal(rows, {config_.latent_dim}, stream_seed(options_.seed, kEval, epoch_, b), options_.device);
     accumulate(sum, model_->loss(batch.states, batch.actions, batch.mask, noise),
-               static_cast<double>(n));
+               static_cast<double>(rows.count));
   }
   model_->train();
-  return scaled(sum, 1.0 / static_cast<double>(std::max<int64_t>(1, M)));
+  return scaled(summed_over_ranks(sum), 1.0 / static_cast<double>(std::max<int64_t>(1, M)));
 }
 
 void VaeTrainer::save_checkpoint(const std::string& path) {

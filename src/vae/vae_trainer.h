@@ -9,9 +9,18 @@
 //
 // Reproducibility: every random stream is derived from (seed, epoch, batch) with
 // util/rng.h's derive_seed: the weight initialisation, the epoch's shuffle and each batch's
-// reparameterisation noise (drawn on the CPU, then moved to the device). The RNG state of a
-// checkpoint is therefore just (seed, epoch), and a run resumed from epoch e reproduces the
-// uninterrupted run exactly (same thread count, CPU).
+// reparameterisation noise and encoder input noise (drawn on the CPU, then moved to the
+// device). The RNG state of a checkpoint is therefore just (seed, epoch), and a run resumed from
+// epoch e reproduces the uninterrupted run exactly (same thread count, CPU).
+//
+// Ranks (util/world.h, rl/distributed.h): under `mpirun -np K` every rank builds the same model
+// and holds the whole data set, and each batch of B trajectories is shared by the ranks
+// (EnvSlice::share: contiguous, uneven when K does not divide B). A rank's loss is the sum over
+// its rows divided by B, the gradients are summed over the ranks, and every rank takes the same
+// Adam step; noise is drawn for the whole batch and sliced. K ranks therefore train what one
+// process trains, to float rounding (VaeTrainerRanksTest in vae_trainer_test.cpp), and the
+// logged loss terms are the run's. Rank 0 alone writes config.json, metrics.csv and the
+// checkpoints; every rank reads latest.pt when resuming, and a run may resume under another K.
 #pragma once
 
 #include <torch/torch.h>
@@ -59,6 +68,7 @@ struct EpochMetrics {
   int epoch = 0;  // 1-based
   LossTerms train, val;
   double seconds = 0;
+  double train_seconds = 0;  // of which the minibatches (not validation or writing)
 };
 
 class VaeTrainer {
@@ -73,7 +83,8 @@ class VaeTrainer {
   std::vector<EpochMetrics> train();
   EpochMetrics train_epoch();
   // Loss terms over a dataset (no gradient; noise from derive_seed(seed, epoch) so values
-  // are comparable between calls in one epoch).
+  // are comparable between calls in one epoch). Under mpirun every rank must call it (as
+  // train_epoch does): each evaluates its share of every batch.
   LossTerms evaluate(const TrajectoryDataset& data);
 
   void save_checkpoint(const std::string& path);

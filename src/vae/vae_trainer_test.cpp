@@ -4,12 +4,16 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
 #include "util/atomic_file.h"
+#include "util/csv_table.h"
+#include "util/test_ranks.h"
 #include "util/test_small_fs.h"
 #include "vae/toy_trajectories.h"
 
@@ -232,6 +236,100 @@ TEST_F(VaeTrainerTest, EncodeAndLoadTrainedModel) {
   const auto [mu2, sigma2] = encode(loaded, data);
   EXPECT_TRUE(torch::allclose(mu, mu2, 1e-6, 1e-6));
   EXPECT_TRUE(torch::allclose(sigma, sigma2, 1e-6, 1e-6));
+}
+
+// ---- Ranks: `mpirun -np K vaegail vae train` (the test binary runs itself under mpirun; the
+// RankShare case is the ranks' program, told the run directory and epochs by the variables).
+constexpr const char* kVaeRanksRunDir = "VAEGAIL_TEST_VAE_RANKS_RUN_DIR";
+constexpr const char* kVaeRanksEpochs = "VAEGAIL_TEST_VAE_RANKS_EPOCHS";
+
+class VaeTrainerRanksTest : public VaeTrainerTest {
+ protected:
+  // 7 ragged training trajectories in batches of 3, 3, 1: on 2 ranks uneven shares (1 + 2) and a
+  // rank without rows; 5 validation trajectories in evaluation batches of 4 and 1; z of 3 and
+  // noise on the encoder's input, both drawn per batch.
+  static VaeTrainer trainer(const fs::path& run_dir, int epochs) {
+    VaeConfig c = tiny_config();
+    c.latent_dim = 3;
+    c.encoder_input_noise = 0.3;
+    TrainerOptions o;
+    o.run_dir = run_dir.string();
+    o.epochs = epochs;
+    o.seed = 42;
+    o.progress = false;
+    o.eval_batch_size = 4;
+    return VaeTrainer(c, o, toy_dataset(7, 1, true), toy_dataset(5, 2, true));
+  }
+
+  void train_on_ranks(int ranks, const fs::path& run_dir, int epochs) {
+    fs::create_directories(root_);
+    const std::string failure =
+        run_case_on_ranks(ranks, "VaeTrainerRanksTest.RankShare",
+                          {{kVaeRanksRunDir, run_dir.string()}, {kVaeRanksEpochs, std::to_string(epochs)}},
+                          root_ / "mpirun.log");
+    ASSERT_TRUE(failure.empty()) << failure;
+  }
+};
+
+std::map<std::string, torch::Tensor> parameters_of(VaeTrainer& t) {
+  std::map<std::string, torch::Tensor> out;
+  for (const auto& p : t.model()->named_parameters()) out[p.key()] = p.value().detach().clone();
+  return out;
+}
+
+void expect_close(const std::map<std::string, torch::Tensor>& a, const std::map<std::string, torch::Tensor>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [name, value] : a)
+    EXPECT_TRUE(torch::allclose(value, b.at(name), 1e-5, 1e-5))
+        << name << ": largest difference " << (value - b.at(name)).abs().max().item<double>();
+}
+
+// metrics.csv's loss columns (not seconds) agree to float rounding, row by row.
+void expect_same_losses(const fs::path& a, const fs::path& b) {
+  const auto x = CsvTable::read(a.string()), y = CsvTable::read(b.string());
+  ASSERT_EQ(x.rows(), y.rows());
+  for (const auto& column : x.columns()) {
+    if (column == "seconds") continue;
+    const auto u = x.numbers(column), v = y.numbers(column);
+    for (size_t i = 0; i < u.size(); ++i)
+      EXPECT_NEAR(u[i], v[i], 1e-5 * std::max(1.0, std::abs(u[i]))) << column << " of epoch " << i + 1;
+  }
+}
+
+TEST_F(VaeTrainerRanksTest, RankShare) {
+  const char* run_dir = std::getenv(kVaeRanksRunDir);
+  if (run_dir == nullptr) GTEST_SKIP() << "the ranks' program of the tests below, run by them under mpirun";
+  trainer(run_dir, std::atoi(std::getenv(kVaeRanksEpochs))).train();
+}
+
+TEST_F(VaeTrainerRanksTest, TwoRanksTrainWhatOneProcessTrains) {
+  if (!have_mpirun()) GTEST_SKIP() << "built without MPI or no mpirun";
+  train_on_ranks(2, root_ / "ranks", 2);
+  auto one = trainer(root_ / "one", 2);
+  one.train();
+  auto ranks = trainer(root_ / "ranks", 2);  // loads the 2-rank run's checkpoint
+  ASSERT_EQ(ranks.epoch(), 2);
+  const auto a = parameters_of(one), b = parameters_of(ranks);
+  expect_close(a, b);
+  // 6 Adam steps moved every parameter: the comparison is not of two initialisations.
+  auto initial = trainer(root_ / "initial", 0);
+  const auto start = parameters_of(initial);
+  for (const auto& [name, value] : a) EXPECT_FALSE(torch::equal(value, start.at(name))) << name << " never moved";
+  // Rank 0 alone wrote one row per epoch, with the run's training and validation losses.
+  EXPECT_EQ(count_lines(root_ / "ranks" / "metrics.csv"), 3);
+  expect_same_losses(root_ / "one" / "metrics.csv", root_ / "ranks" / "metrics.csv");
+}
+
+TEST_F(VaeTrainerRanksTest, ARunResumesUnderAnotherRankCount) {
+  if (!have_mpirun()) GTEST_SKIP() << "built without MPI or no mpirun";
+  trainer(root_ / "resumed", 1).train();    // one process
+  train_on_ranks(2, root_ / "resumed", 2);  // the second epoch on two ranks
+  auto whole = trainer(root_ / "whole", 2);
+  whole.train();
+  auto resumed = trainer(root_ / "resumed", 2);
+  ASSERT_EQ(resumed.epoch(), 2);
+  expect_close(parameters_of(whole), parameters_of(resumed));
+  expect_same_losses(root_ / "whole" / "metrics.csv", root_ / "resumed" / "metrics.csv");
 }
 
 TEST_F(VaeTrainerTest, RejectsMalformedData) {
