@@ -1,13 +1,17 @@
 #include "bench/vae_bench.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <fmt/format.h>
 
 #include "util/malloc_tuning.h"
+#include "util/world.h"
 #include "vae/trajectory_vae.h"
+#include "vae/vae_trainer.h"
 
 namespace vaegail {
 
@@ -130,6 +134,54 @@ std::string format_vae_bench(const VaeBenchOptions& o, const VaeBenchResult& r) 
       r.reference_state_decoder_seconds / r.state_decoder_seconds, r.peak_rss_mb, epoch,
       o.epoch_episodes, o.epoch_steps, o.epoch_target_seconds,
       epoch < o.epoch_target_seconds ? "met" : "NOT met");
+}
+
+VaeTrainerBenchResult run_vae_trainer_bench(const VaeBenchOptions& o, int batches) {
+  if (batches < 1) throw std::invalid_argument("bench vae: --trainer-batches must be at least 1");
+  const World& world = World::get();
+  // One run directory for all ranks: rank 0's process id names it.
+  std::uint64_t id = static_cast<std::uint64_t>(::getpid());
+  world.broadcast(&id, 1);
+  const auto run_dir = std::filesystem::temp_directory_path() / ("vaegail_bench_vae_" + std::to_string(id));
+  if (world.is_root()) std::filesystem::remove_all(run_dir);
+
+  vae::VaeConfig c = o.config;
+  c.batch_size = o.batch;
+  c.lr_decay_epochs = 0;
+  const int64_t M = static_cast<int64_t>(batches) * o.batch, T = o.steps;
+  torch::manual_seed(0);
+  vae::TrajectoryDataset data{torch::randn({M, T + 1, c.state_dim}), torch::randn({M, T, c.action_dim}), {}};
+  vae::TrainerOptions options;
+  options.run_dir = run_dir.string();
+  options.epochs = 2;
+  options.progress = false;
+  VaeTrainerBenchResult r;
+  r.ranks = world.size();
+  r.batches = batches;
+  {
+    vae::VaeTrainer trainer(c, options, data, {});
+    const auto epochs = trainer.train();
+    r.seconds = std::min(epochs.front().train_seconds, epochs.back().train_seconds);
+  }
+  world.barrier();  // every rank is done with the run directory
+  if (world.is_root()) std::filesystem::remove_all(run_dir);
+  return r;
+}
+
+std::string format_vae_trainer_bench(const VaeBenchOptions& o, const VaeTrainerBenchResult& r) {
+  return fmt::format(
+      "VAE '{}' trainer (LSTM {}, z {}, WaveNet {} x {} ch), {} rank{} x {} torch thread{}, batch {} x {} steps\n"
+      "epoch of {} batches    {:.2f} s (the faster of two) = {:.0f} trajectory-steps/s\n",
+      o.config.name, o.config.lstm_hidden, o.config.latent_dim, o.config.wavenet_layers, o.config.wavenet_channels,
+      r.ranks, r.ranks == 1 ? "" : "s", torch::get_num_threads(), torch::get_num_threads() == 1 ? "" : "s", o.batch,
+      o.steps, r.batches, r.seconds, r.trajectory_steps_per_s(o));
+}
+
+nlohmann::json vae_trainer_bench_json(const VaeBenchOptions& o, const VaeTrainerBenchResult& r) {
+  return {{"preset", o.config.name},     {"ranks", r.ranks},
+          {"torch_threads", torch::get_num_threads()}, {"batch", o.batch},
+          {"steps", o.steps},            {"batches", r.batches},
+          {"seconds", r.seconds},        {"trajectory_steps_per_s", r.trajectory_steps_per_s(o)}};
 }
 
 }  // namespace vaegail

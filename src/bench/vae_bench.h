@@ -2,6 +2,7 @@
 // matrix-multiply ceiling, measured in one run (recorded figures: docs/benchmarks.md).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "vae/vae_config.h"
@@ -38,6 +39,24 @@ struct VaeBenchResult {
 
 VaeBenchResult run_vae_bench(const VaeBenchOptions& options);
 std::string format_vae_bench(const VaeBenchOptions& options, const VaeBenchResult& result);
+
+// `vaegail bench vae --trainer-batches N`: the trainer itself (vae/vae_trainer.h: each rank's
+// share of a batch, the gradients summed over the ranks, Adam) on random trajectories of the
+// bench's shape, in a temporary run directory: two epochs of N batches of options.batch, the
+// faster one kept. Under mpirun the ranks train one run together; scripts/bench/vae_ranks.sh sets
+// K ranks against one process in the same window.
+struct VaeTrainerBenchResult {
+  int ranks = 1;  // processes of the run (mpirun -np), util/world.h
+  int batches = 0;
+  double seconds = 0;  // the faster epoch's minibatches (EpochMetrics::train_seconds)
+  double trajectory_steps_per_s(const VaeBenchOptions& o) const {
+    return static_cast<double>(batches) * o.batch * o.steps / seconds;
+  }
+};
+VaeTrainerBenchResult run_vae_trainer_bench(const VaeBenchOptions& options, int batches);
+std::string format_vae_trainer_bench(const VaeBenchOptions& options, const VaeTrainerBenchResult& result);
+// The figures as JSON (name -> value), for scripts.
+nlohmann::json vae_trainer_bench_json(const VaeBenchOptions& options, const VaeTrainerBenchResult& result);
 
 // Matmul FLOPs of one forward + backward of the state decoder on `positions` (x_t, x_{t+1})
 // pairs (backward counted as twice the forward).

@@ -407,6 +407,8 @@ void add_interpolate(CLI::App& vae) {
 struct BenchFlags {
   std::string preset = "walker";
   int state_dim = 0, action_dim = 0, steps = 0;  // 0: the preset body's
+  int trainer_batches = 0;                      // 0: the step and its parts, not the trainer
+  std::string json;
   VaeBenchOptions bench;
 };
 
@@ -433,6 +435,12 @@ void add_bench_vae(CLI::App& bench) {
   c->add_option("--steps", f->steps, "steps per trajectory (default: the preset body's episode: 400, 50, 334)")->check(CLI::Range(1, 1 << 20));
   c->add_option("--seconds", f->bench.seconds, "measuring time per part (after one untimed run)")
       ->check(CLI::Range(0.0, 3600.0))->capture_default_str();
+  c->add_option("--trainer-batches", f->trainer_batches,
+                "instead, time `vae train` itself: two epochs of this many batches on random trajectories "
+                "(under mpirun: the ranks together; scripts/bench/vae_ranks.sh)")
+      ->check(CLI::Range(1, 1 << 20));
+  auto* json = c->add_option("--json", f->json, "with --trainer-batches, also write the figures to this JSON file");
+  json->needs(c->get_option("--trainer-batches"));
   c->callback([f] {
     const BenchShape shape = bench_shape(f->preset);
     f->bench.steps = f->steps ? f->steps : shape.steps;
@@ -440,6 +448,13 @@ void add_bench_vae(CLI::App& bench) {
     f->bench.epoch_episodes = shape.epoch_episodes;
     f->bench.config = vae::VaeConfig::preset(f->preset, f->state_dim ? f->state_dim : shape.state_dim,
                                              f->action_dim ? f->action_dim : shape.action_dim);
+    if (f->trainer_batches > 0) {
+      const auto r = run_vae_trainer_bench(f->bench, f->trainer_batches);
+      std::fputs(format_vae_trainer_bench(f->bench, r).c_str(), stdout);
+      if (!f->json.empty() && World::get().is_root())
+        write_file_atomically(f->json, vae_trainer_bench_json(f->bench, r).dump(2) + "\n");
+      return;
+    }
     const auto r = run_vae_bench(f->bench);
     std::fputs(format_vae_bench(f->bench, r).c_str(), stdout);
   });
