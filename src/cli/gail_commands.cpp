@@ -26,7 +26,7 @@ namespace {
 
 // ---- gail train -----------------------------------------------------------------------
 struct GailFlags {
-  std::string mode = "diverse", demos, vae, run_dir, task;
+  std::string mode = "diverse", demos, vae, run_dir, task, preset;
   GailOptions options;
 };
 
@@ -44,9 +44,35 @@ vae::TrajectoryVae mode_vae(GailFlags& f) {
   return vae::load_trained_vae(f.vae, torch::Device(f.options.device));
 }
 
+// The run's options: the preset's (by default the one of the demonstrations' body, gail_preset),
+// then every flag given on `command`'s line.
+GailOptions preset_options(const GailFlags& f, const CLI::App& command, const Env& env) {
+  const GailOptions preset = gail_preset(f.preset.empty() ? default_gail_preset(env) : f.preset, env);
+  GailOptions o = f.options;  // the flags, the struct's defaults where none was given
+  o.policy_hidden = preset.policy_hidden;
+  o.critic_hidden = preset.critic_hidden;
+  o.discriminator_hidden = preset.discriminator_hidden;
+  o.init_log_std = preset.init_log_std;
+  const auto given = [&command](const char* flag) {
+    const CLI::Option* option = command.get_option_no_throw(flag);
+    return option && option->count() > 0;
+  };
+  if (!given("--iterations")) o.iterations = preset.iterations;
+  if (!given("--disc-steps")) o.discriminator_steps = preset.discriminator_steps;
+  if (!given("--disc-lr")) o.discriminator_learning_rate = preset.discriminator_learning_rate;
+  if (!given("--disc-state-indices")) o.discriminator_state_indices = preset.discriminator_state_indices;
+  return o;
+}
+
 void add_mode_options(CLI::App& c, GailFlags& f) {
   c.add_option("--mode", f.mode, "diverse: VAE-conditioned policy and discriminator; plain: GAIL without z")
       ->check(CLI::IsMember({"diverse", "plain"}))->capture_default_str();
+  c.add_option("--preset", f.preset,
+               "the paper's sizes and settings for a body (Tables 2-3): walker, or humanoid (policy and critic "
+               "(300, 200, 100), discriminator (300, 200), initial std 0.1, 100000 iterations); default: the "
+               "demonstrations' body's; the discriminator sees the body's own subset of the observation "
+               "(humanoid: root and end effectors, 112..136; walker: all)")
+      ->check(CLI::IsMember({"walker", "humanoid"}));
   c.add_option("--vae", f.vae, "VAE run (directory, checkpoints/latest.pt or weights.pt); diverse mode");
   c.add_option("--envs", f.options.num_envs, "environments, one demonstration each per episode")
       ->check(CLI::Range(1, 1 << 16))->capture_default_str();
@@ -58,11 +84,12 @@ void add_mode_options(CLI::App& c, GailFlags& f) {
   add_device_option(c, f.options.device);
 }
 
-void run_gail(GailFlags f) {
+void run_gail(GailFlags f, const CLI::App& command) {
   const vae::TrajectoryVae model = mode_vae(f);
   const DemoSet demos = read_demos(f.demos);
   check_demo_task(demos, f.task);
   const auto env = demo_env(demos);
+  f.options = preset_options(f, command, *env);
   GailTrainer trainer(demos, model, *env, f.options, f.run_dir);
   if (trainer.iteration() > 0) std::printf("resuming %s after iteration %d\n", f.run_dir.c_str(), trainer.iteration());
   std::fflush(stdout);
@@ -90,23 +117,25 @@ void add_gail_train(CLI::App& gail) {
   c->add_option("--demos", f->demos, "demonstration file (.h5)")->required();
   c->add_option("--run-dir", f->run_dir, "config.json, metrics.csv, checkpoints/latest.pt")->required();
   add_demo_task_option(*c, f->task);
-  c->add_option("--iterations", o.iterations, "train until this many iterations in total (Table 3: 30000)")
-      ->check(CLI::Range(1, 1 << 30))->capture_default_str();
+  c->add_option("--iterations", o.iterations,
+                "train until this many iterations in total (default: the preset's, Table 3: walker 30000, humanoid 100000)")
+      ->check(CLI::Range(1, 1 << 30));
   c->add_option("--minutes", o.minutes, "stop after this many minutes of this call (0: no limit)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   c->add_option("--steps-per-env", o.steps_per_env, "steps per environment per iteration (0: one episode)")
       ->check(CLI::Range(0, 1 << 30))->capture_default_str();
-  c->add_option("--disc-steps", o.discriminator_steps, "discriminator Adam steps per iteration (Table 3)")
+  c->add_option("--disc-steps", o.discriminator_steps, "discriminator Adam steps per iteration (Table 3, both presets)")
       ->check(CLI::Range(0, 1 << 20))->capture_default_str();
-  c->add_option("--disc-lr", o.discriminator_learning_rate, "discriminator learning rate (Table 3)")
+  c->add_option("--disc-lr", o.discriminator_learning_rate, "discriminator learning rate (Table 3, both presets)")
       ->check(CLI::PositiveNumber)->capture_default_str();
   c->add_option("--disc-state-indices", o.discriminator_state_indices,
-                "observation components the discriminator sees (default: all)");
+                "observation components the discriminator sees (default: the body's subset, Env::discriminator_observation: "
+                "humanoid 112..136, others all)");
   c->add_option("--reward-clip", o.reward_clip, "upper bound of the reward -log(1 - D)")
       ->check(CLI::PositiveNumber)->capture_default_str();
   c->add_option("--max-kl", o.max_kl, "TRPO's bound on the mean KL per update")->check(CLI::PositiveNumber)->capture_default_str();
   c->add_option("--seed", o.seed, "initialisation, demonstration draws, z, environments, noise")->capture_default_str();
-  c->callback([f] { run_gail(*f); });
+  c->callback([f, c] { run_gail(*f, *c); });
 }
 
 // ---- bc train -------------------------------------------------------------------------

@@ -53,6 +53,12 @@ class Env {
   // Control steps since the last reset.
   virtual int steps_taken() const = 0;
 
+  // The observation components the adversarial stage's discriminator sees unless told otherwise
+  // (indices into observation(), ascending); empty: the whole observation. A body declares a
+  // subset when its full state lets a discriminator tell demonstrations from imitations by
+  // details that say nothing about the behaviour (the humanoid's 112 joint angles and velocities).
+  virtual std::vector<int> discriminator_observation() const { return {}; }
+
   // The MJCF text of a body the registry rebuilds from its text (a user's file: GenericTaskEnv),
   // which demonstration files store; empty for the built-in tasks, rebuilt by name.
   virtual std::string body_mjcf() const { return {}; }

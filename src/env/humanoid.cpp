@@ -208,6 +208,12 @@ void HumanoidEnv::set_context(const std::vector<double>& context) {
   MujocoEnv::set_context(context);
 }
 
+std::vector<int> HumanoidEnv::discriminator_observation() const {
+  std::vector<int> indices;
+  for (int i = 2 * kHinges; i < obs_dim(); ++i) indices.push_back(i);  // after the angles and velocities
+  return indices;
+}
+
 double HumanoidEnv::reward(const float* action) const {
   return style_reward(style_targets_[static_cast<int>(context_[0])], style_scales_, style_measures(),
                       up_in_root()[2], action, kHinges);

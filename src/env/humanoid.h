@@ -93,6 +93,16 @@ class HumanoidEnv : public MujocoEnv {
   const StyleTerms& style_target(int style) const { return style_targets_.at(style); }
   const StyleTerms& style_scales() const { return style_scales_; }
   void set_context(const std::vector<double>& context) override;
+  // Observation 112..136: root height, up vector, root linear and angular velocity and the 15
+  // end-effector coordinates; not the joint angles and velocities. The paper's discriminator sees
+  // "a subset of features ... mostly features pertaining to end-effector positions" (appendix,
+  // after Merel et al. 2017). Where the hands, feet and head are relative to the pelvis is what a
+  // style looks like; how upright the body is and how fast it moves and turns say whether it
+  // walks like the demonstration (the styles differ in speed and turn rate). The 112 joint
+  // components pin down the exact pose: a discriminator given them tells the policy's steps
+  // from the controller's by small joint details and saturates, leaving a reward that says
+  // little about the style.
+  std::vector<int> discriminator_observation() const override;
   // The reward of a style's targets for measured terms, the pelvis's up_z and an action.
   static double style_reward(const StyleTerms& target, const StyleTerms& scale, const StyleTerms& measured,
                              double up_z, const float* action, int act_dim);

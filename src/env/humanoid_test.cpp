@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -212,15 +213,16 @@ TEST(Humanoid, SameSeedSameEpisodeBitForBit) {
   EXPECT_EQ(copy->observation(), a.observation());
 }
 
-TEST(Humanoid, ObservationAndFeaturesMatchTheSimulatorStateByHand) {
+// A humanoid that does not end its episode on a fall, turned (yaw 0.8 rad, then pitch 0.3 rad),
+// pushed and stepped, so that no frame is the world's and no velocity is zero (the tests reach
+// into the simulator state on purpose).
+std::unique_ptr<HumanoidEnv> turned_and_pushed() {
   HumanoidOptions o;
   o.terminate_on_fall = false;
-  HumanoidEnv env(o);
+  auto owner = std::make_unique<HumanoidEnv>(o);
+  HumanoidEnv& env = *owner;
   env.reset(5);
-  // Turn the body (yaw 0.8 rad, then pitch 0.3 rad) and push it, so that no frame is the
-  // world's and no velocity is zero (the test reaches into the simulator state on purpose).
   auto* d = const_cast<mjData*>(env.data());
-  const mjModel* m = env.model();
   double yaw[4], pitch[4];
   const double z[3] = {0, 0, 1}, y[3] = {0, 1, 0};
   mju_axisAngle2Quat(yaw, z, 0.8);
@@ -229,19 +231,31 @@ TEST(Humanoid, ObservationAndFeaturesMatchTheSimulatorStateByHand) {
   d->qpos[2] += 0.3;
   const double push[6] = {0.5, -0.3, 0.2, 0.1, -0.1, 0.2};  // linear (world), angular (root frame)
   std::copy(push, push + 6, d->qvel);
-  mj_forward(m, d);
+  mj_forward(env.model(), d);
   for (int t = 0; t < 5; ++t) env.step(hinge_wobble(t).data());
+  return owner;
+}
+
+// A world-frame vector in the frame of the body `root`.
+std::vector<double> in_root_frame(const HumanoidEnv& env, int root, const double* world) {
+  double out[3];
+  mju_mulMatTVec(out, env.data()->xmat + 9 * root, world, 3, 3);
+  return std::vector<double>(out, out + 3);
+}
+
+TEST(Humanoid, ObservationAndFeaturesMatchTheSimulatorStateByHand) {
+  const auto owner = turned_and_pushed();
+  const HumanoidEnv& env = *owner;
+  const mjData* d = env.data();
+  const mjModel* m = env.model();
+  const double z[3] = {0, 0, 1};
 
   const auto obs = env.observation();
   std::vector<double> f(env.feature_names().size());
   env.features(f.data());
   const int root = mj_name2id(m, mjOBJ_BODY, "root");
   const double* r = d->xmat + 9 * root;
-  auto in_root = [&](const double* world) {
-    double out[3];
-    mju_mulMatTVec(out, r, world, 3, 3);
-    return std::vector<double>(out, out + 3);
-  };
+  auto in_root = [&](const double* world) { return in_root_frame(env, root, world); };
   for (const auto& hinge : expected_hinges()) {
     const int j = mj_name2id(m, mjOBJ_JOINT, hinge.c_str());
     EXPECT_FLOAT_EQ(obs[j - 1], static_cast<float>(d->qpos[m->jnt_qposadr[j]]));
@@ -305,6 +319,46 @@ TEST(Humanoid, ObservationAndFeaturesMatchTheSimulatorStateByHand) {
   EXPECT_NEAR(s[kHandHeight], (f[6] + f[9]) / 2, 1e-12);                        // lhand_z, rhand_z
   EXPECT_NEAR(s[kHandSpread], (std::abs(f[5]) + std::abs(f[8])) / 2, 1e-12);    // lhand_y, rhand_y
   EXPECT_NEAR(s[kFootSpread], (std::abs(f[11]) + std::abs(f[14])) / 2, 1e-12);  // lfoot_y, rfoot_y
+}
+
+// The discriminator's subset is what the header says, read off the simulator: the root's height,
+// the up axis, the root's velocities, then each end effector's position relative to the root, and
+// no joint angle or velocity.
+TEST(Humanoid, TheDiscriminatorSeesTheRootAndTheEndEffectorsNotTheJoints) {
+  const auto owner = turned_and_pushed();
+  const HumanoidEnv& env = *owner;
+  const mjModel* m = env.model();
+  const mjData* d = env.data();
+  const int root = mj_name2id(m, mjOBJ_BODY, "root");
+  std::vector<double> expected = {d->xpos[3 * root + 2]};
+  const double z[3] = {0, 0, 1};
+  const auto up = in_root_frame(env, root, z);
+  expected.insert(expected.end(), up.begin(), up.end());
+  double velocity[6];  // angular then linear, root frame
+  mj_objectVelocity(m, d, mjOBJ_XBODY, root, velocity, 1);
+  expected.insert(expected.end(), velocity + 3, velocity + 6);
+  expected.insert(expected.end(), velocity, velocity + 3);
+  for (const char* name : {"lhand", "rhand", "lfoot", "rfoot", "head"}) {
+    const int body = mj_name2id(m, mjOBJ_BODY, name);
+    double offset[3];
+    for (int k = 0; k < 3; ++k) offset[k] = d->xpos[3 * body + k] - d->xpos[3 * root + k];
+    const auto local = in_root_frame(env, root, offset);
+    expected.insert(expected.end(), local.begin(), local.end());
+  }
+
+  const auto subset = env.discriminator_observation();
+  ASSERT_EQ(subset.size(), expected.size());
+  const auto obs = env.observation();
+  std::vector<double> f(env.feature_names().size());
+  env.features(f.data());
+  for (size_t k = 0; k < subset.size(); ++k) {
+    EXPECT_NEAR(obs.at(subset[k]), expected[k], 1e-5) << env.observation_spec().names[subset[k]];
+    EXPECT_GE(subset[k], 2 * HumanoidEnv::kHinges);  // no joint angle or velocity
+  }
+  // The same coordinates as the features that score imitations (root_height, lhand_x ... head_z).
+  EXPECT_FLOAT_EQ(obs[subset[0]], static_cast<float>(f[2]));
+  for (int k = 0; k < 15; ++k) EXPECT_FLOAT_EQ(obs[subset[10 + k]], static_cast<float>(f[4 + k]));
+  EXPECT_TRUE(make_env(EnvRequest{"walker"})->discriminator_observation().empty());  // the walker's: all of it
 }
 
 TEST(Humanoid, StyleRewardMatchesHandComputedValues) {

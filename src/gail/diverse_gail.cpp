@@ -98,6 +98,23 @@ const std::vector<std::string> kGailMetricColumns = [] {
   return columns;
 }();
 
+GailOptions gail_preset(const std::string& name, const Env& env) {
+  GailOptions o;
+  if (name == "humanoid") {
+    o.iterations = 100000;
+    o.policy_hidden = {300, 200, 100};
+    o.critic_hidden = {300, 200, 100};
+    o.discriminator_hidden = {300, 200};
+    o.init_log_std = std::log(0.1);
+  } else if (name != "walker") {
+    throw std::invalid_argument("GAIL: unknown preset '" + name + "' (walker, humanoid)");
+  }
+  o.discriminator_state_indices = env.discriminator_observation();
+  return o;
+}
+
+std::string default_gail_preset(const Env& env) { return env.id() == "humanoid" ? "humanoid" : "walker"; }
+
 GailPhaseSeconds& GailPhaseSeconds::operator+=(const GailPhaseSeconds& o) {
   rollout += o.rollout;
   policy_update += o.policy_update;

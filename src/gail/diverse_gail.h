@@ -92,6 +92,16 @@ struct GailPhaseSeconds {
   GailPhaseSeconds& operator+=(const GailPhaseSeconds& o);
 };
 
+// The paper's settings for a body (appendix, Tables 2 and 3), on top of GailOptions' own defaults
+// (which are the walker's): "walker", or "humanoid": policy and critic (300, 200, 100),
+// discriminator (300, 200), initial policy std 0.1, 100000 iterations (the discriminator's
+// learning rate 1e-4 and 10 steps are the walker's too). Either way the discriminator sees
+// `env`'s discriminator_observation() (the humanoid's root and end effectors; the walker's whole
+// observation). Throws std::invalid_argument naming an unknown preset.
+GailOptions gail_preset(const std::string& name, const Env& env);
+// The preset named after the environment's task when there is one ("humanoid"), else "walker".
+std::string default_gail_preset(const Env& env);
+
 class GailTrainer {
  public:
   // `vae` is required in diverse mode and ignored in plain mode. Checks that the

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "env/humanoid.h"
 #include "env/walker.h"
 #include "gail/test_support.h"
 #include "util/atomic_file.h"
@@ -197,6 +198,35 @@ TEST_F(DiverseGailTest, RefusesOtherSettingsInAnExistingRun) {
 TEST_F(DiverseGailTest, RefusesAVaeOfOtherDimensions) {
   vae = vae::TrajectoryVae(tiny_vae_config(env->obs_dim() + 1, env->act_dim()));
   EXPECT_THROW(trainer("dims", options), std::invalid_argument);
+}
+
+TEST(GailPreset, TheHumanoidsIsTablesTwoAndThreeWithTheBodysDiscriminatorSubset) {
+  const HumanoidEnv humanoid;
+  const GailOptions o = gail_preset("humanoid", humanoid);
+  EXPECT_EQ(o.policy_hidden, (std::vector<int>{300, 200, 100}));
+  EXPECT_EQ(o.critic_hidden, (std::vector<int>{300, 200, 100}));
+  EXPECT_EQ(o.discriminator_hidden, (std::vector<int>{300, 200}));
+  EXPECT_NEAR(std::exp(o.init_log_std), 0.1, 1e-12);
+  EXPECT_EQ(o.discriminator_learning_rate, 1e-4);
+  EXPECT_EQ(o.discriminator_steps, 10);
+  EXPECT_EQ(o.iterations, 100000);
+  EXPECT_EQ(o.discriminator_state_indices, humanoid.discriminator_observation());
+  const auto& names = humanoid.observation_spec().names;
+  EXPECT_EQ(names.at(o.discriminator_state_indices.front()), "root_height");
+  EXPECT_EQ(names.at(o.discriminator_state_indices.back()), "head_z");
+  EXPECT_EQ(default_gail_preset(humanoid), "humanoid");
+}
+
+TEST(GailPreset, TheWalkersIsTheOptionsDefaultsOnTheWholeObservation) {
+  const WalkerEnv walker;
+  EXPECT_EQ(nlohmann::json(gail_preset("walker", walker)), nlohmann::json(GailOptions()));
+  EXPECT_EQ(default_gail_preset(walker), "walker");
+  try {
+    gail_preset("ant", walker);
+    FAIL() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "GAIL: unknown preset 'ant' (walker, humanoid)");
+  }
 }
 
 }  // namespace
