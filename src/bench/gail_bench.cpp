@@ -59,10 +59,10 @@ std::string format_gail_bench(const GailBenchOptions& o, const GailBenchResult& 
     return fmt::format("  {:<16} {:8.3f} s  {:5.1f}%\n", name, seconds / r.iterations, share(seconds));
   };
   const std::string head = fmt::format(
-      "bench gail: {} mode, {} environments x {} steps per iteration on {} rank(s) x {} env thread(s), "
+      "bench gail: {}, {} mode, {} environments x {} steps per iteration on {} rank(s) x {} env thread(s), "
       "{} timed iterations (after one warm-up), {} Torch thread(s)\n"
       "per iteration      {:8.3f} s\n",
-      to_string(o.gail.mode), o.gail.num_envs, r.steps_per_iteration / o.gail.num_envs, r.ranks, o.gail.env_threads,
+      o.env.task, to_string(o.gail.mode), o.gail.num_envs, r.steps_per_iteration / o.gail.num_envs, r.ranks, o.gail.env_threads,
       r.iterations, torch::get_num_threads(), per_it);
   const std::string phases = phase("rollout", r.phases.rollout) + phase("TRPO + critic", r.phases.policy_update) +
                              phase("discriminator", r.phases.discriminator) +
@@ -85,7 +85,8 @@ std::string format_gail_bench(const GailBenchOptions& o, const GailBenchResult& 
 }
 
 nlohmann::json gail_bench_json(const GailBenchOptions& o, const GailBenchResult& r) {
-  nlohmann::json j = {{"mode", to_string(o.gail.mode)},
+  nlohmann::json j = {{"task", o.env.task},
+                      {"mode", to_string(o.gail.mode)},
                       {"envs", o.gail.num_envs},
                       {"env_threads", o.gail.env_threads},
                       {"ranks", r.ranks},

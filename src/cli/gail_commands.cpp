@@ -178,28 +178,45 @@ struct GailBenchFlags {
   std::string json;
 };
 
+// The task's demonstrations where --demos is not given: the published walker's, or the
+// humanoid's training set of scripts/reproduce/humanoid.sh.
+std::string bench_demos(const GailFlags& f) {
+  const std::string demos = !f.demos.empty()           ? f.demos
+                            : f.task == "humanoid"     ? kHumanoidTrainDemos
+                                                       : kPublishedWalkerDemos;
+  if (demos == kHumanoidTrainDemos && !std::filesystem::exists(demos))
+    throw std::invalid_argument(demos + ": no such file (scripts/reproduce/humanoid.sh demos makes it)");
+  ensure_published_walker_demos(demos);
+  return demos;
+}
+
 void add_bench_gail(CLI::App& bench) {
   auto f = std::make_shared<GailBenchFlags>();
-  f->gail.demos = kPublishedWalkerDemos;
   CLI::App* c = bench.add_subcommand(
-      "gail", "seconds per fine-tuning iteration by phase, env steps/s against the physics ceiling "
-              "(default: the published walker demonstrations and VAE)");
+      "gail", "seconds per fine-tuning iteration by phase, env steps/s against the all-core physics ceiling of the "
+              "same body (default: the task's demonstrations and VAE, and its preset)");
   add_mode_options(*c, f->gail);
-  c->add_option("--demos", f->gail.demos, "demonstration file (.h5)")->capture_default_str();
+  c->add_option("--task", f->gail.task,
+                "walker (default: " + kPublishedWalkerDemos + ", " + kPublishedWalkerVae + ") or humanoid (" +
+                    kHumanoidTrainDemos + ", " + kHumanoidVae + ")")
+      ->check(CLI::IsMember({"walker", "humanoid"}))->default_str("walker");
+  c->add_option("--demos", f->gail.demos, "demonstration file (.h5); default: the task's (the VAE: the file's body's)");
   c->add_option("--iterations", f->bench.iterations, "timed iterations (after one warm-up)")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   c->add_option("--physics-seconds", f->bench.physics_seconds, "measuring time per physics ceiling")
       ->check(CLI::Range(0.1, 3600.0))->capture_default_str();
   c->add_option("--json", f->json, "also write the figures to this JSON file (scripts/bench/gail_ranks.sh reads it)");
-  c->callback([f] {
+  c->callback([f, c] {
     GailFlags flags = f->gail;
-    if (flags.mode == "diverse" && flags.vae.empty()) flags.vae = kPublishedWalkerVae;
-    const vae::TrajectoryVae model = mode_vae(flags);
-    ensure_published_walker_demos(flags.demos);
+    flags.demos = bench_demos(flags);
     const DemoSet demos = read_demos(flags.demos);
+    check_demo_task(demos, flags.task);
+    if (flags.mode == "diverse" && flags.vae.empty())  // the VAE of the demonstrations' body
+      flags.vae = demos.header.env_id == "humanoid" ? kHumanoidVae : kPublishedWalkerVae;
+    const vae::TrajectoryVae model = mode_vae(flags);
     GailBenchOptions options = f->bench;
-    options.gail = flags.options;
     options.env = demo_env_request(demos);
+    options.gail = preset_options(flags, *c, *make_env(options.env));
     const GailBenchResult result = run_gail_bench(options, demos, model);
     std::fputs(format_gail_bench(options, result).c_str(), stdout);
     if (!f->json.empty() && World::get().is_root())
