@@ -174,12 +174,13 @@ void write_videos(const Env& env, const DemoSet& demos, const Shown& shown,
   }
 }
 
-void run_eval_transitions(const EvalTransitionsFlags& f) {
+void run_eval_transitions(EvalTransitionsFlags f) {
   torch::NoGradGuard no_grad;
   const auto device = parse_device(f.device);
   auto setup = load_eval_setup(f.inputs, device);
   const Env& env = *setup.env;
   const auto judge = eval::behaviour_judge(env, setup.demos, f.tolerance);
+  f.transition.rollout.speed_feature = judge.speed_feature;  // the task's, in the rollouts and the figure
   const auto sampled = choose_pairs(setup.demos, judge, f);
   const auto pairs = eval::with_references(sampled);
   const auto [z_from, z_to] = pair_latents(setup.model, setup.demos, pairs);
@@ -238,7 +239,9 @@ void add_eval_transitions(CLI::App& eval) {
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();
   c->add_option("--settle", f->transition.settle, "control steps after the blend before the behaviour is measured")
       ->check(CLI::Range(0, 1 << 20))->capture_default_str();
-  c->add_option("--tolerance", f->tolerance, "walker: the speed after the blend matches B's within this (m/s)")
+  c->add_option("--tolerance", f->tolerance,
+                "walker: the speed after the blend matches B's within this (m/s); the humanoid's style is named by "
+                "its gait classifier")
       ->check(CLI::Range(0.0, 100.0))->capture_default_str();
   c->add_option("--envs", f->transition.rollout.num_envs, "environments stepped together")
       ->check(CLI::Range(1, 1 << 20))->capture_default_str();

@@ -395,14 +395,9 @@ void run_styles(const std::string& path) {
   const auto* humanoid = dynamic_cast<const HumanoidEnv*>(env.get());
   if (!humanoid) throw std::invalid_argument(path + ": demos styles reads humanoid demonstrations, not " + env->id());
   std::vector<GaitSignature> rows;
-  std::vector<int> labels;
-  std::vector<std::string> names;  // the styles by expert id ("train/walk"), in order of appearance
-  for (const auto& e : demos.episodes) {
+  for (const auto& e : demos.episodes)
     rows.push_back(gait_signature(e, demos.header.feature_names, env->control_timestep()));
-    const auto known = std::find(names.begin(), names.end(), e.expert_id);
-    labels.push_back(static_cast<int>(known - names.begin()));
-    if (known == names.end()) names.push_back(e.expert_id);
-  }
+  const auto [names, labels] = style_labels(demos);
   const Confusion confusion = split_half_confusion(rows, labels);
   // A Markdown table (docs/ quotes it): a row per true style, a column per style named.
   std::printf("| true \\ named |");

@@ -5,9 +5,12 @@
 #include <fmt/format.h>
 #include <iterator>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 
+#include "experts/humanoid_gait.h"
 #include "util/rng.h"
 #include "vae/demo_dataset.h"
 
@@ -53,6 +56,7 @@ BehaviourJudge walker_speed_judge(const std::vector<std::string>& feature_names,
   BehaviourJudge judge;
   judge.noun = "speed";
   judge.rule = fmt::format("the mean forward speed is within {:.2f} m/s of B's demonstration's", tolerance);
+  judge.speed_feature = "com_speed";
   judge.of_demonstration = [](const DemoSet& demos, int64_t episode) {
     const Episode& e = demos.episodes.at(episode);
     return Behaviour{e.context.empty() ? "" : number_label(e.context[0]), vae::achieved_speed(demos, episode)};
@@ -70,9 +74,53 @@ BehaviourJudge walker_speed_judge(const std::vector<std::string>& feature_names,
   return judge;
 }
 
+BehaviourJudge humanoid_style_judge(const DemoSet& demos, const std::vector<std::string>& feature_names, double dt) {
+  // What the classifiers are fitted on, copied so that the judge needs no caller's DemoSet to
+  // live on: the demonstrations' features and styles (a few MB), not their observations.
+  auto styles = std::make_shared<DemoSet>();
+  styles->path = demos.path;
+  styles->header.feature_names = demos.header.feature_names;
+  for (const Episode& e : demos.episodes) {
+    Episode slim;
+    slim.features = e.features;
+    slim.rewards = e.rewards;
+    slim.expert_id = e.expert_id;
+    styles->episodes.push_back(std::move(slim));
+  }
+  // One classifier per stretch asked about (the blend's end plus the settling: one in practice);
+  // the whole episodes' fitted now, so that a file that cannot be classified fails here.
+  struct Fitted {
+    std::mutex mutex;
+    std::map<int, StyleClassifier> by_from;
+  };
+  auto fitted = std::make_shared<Fitted>();
+  fitted->by_from.emplace(0, StyleClassifier(*styles, dt));
+  BehaviourJudge judge;
+  judge.noun = "style";
+  judge.rule = "the nearest-centroid gait classifier, fitted on the demonstrations' same stretch, names B's style";
+  judge.speed_feature = "forward_speed";
+  judge.of_demonstration = [dt](const DemoSet& file, int64_t episode) {
+    const Episode& e = file.episodes.at(episode);
+    return Behaviour{e.expert_id, gait_signature(e, file.header.feature_names, dt)[0]};
+  };
+  judge.of_rollout = [styles, fitted, feature_names, dt](const Episode& rollout, int from_step) {
+    if (rollout.length() <= from_step) return Behaviour{"", std::nan("")};
+    const GaitSignature signature = gait_signature(rollout, feature_names, dt, from_step);
+    std::lock_guard<std::mutex> lock(fitted->mutex);
+    auto it = fitted->by_from.find(from_step);
+    if (it == fitted->by_from.end()) it = fitted->by_from.emplace(from_step, StyleClassifier(*styles, dt, from_step)).first;
+    return Behaviour{it->second.name(signature), signature[0]};
+  };
+  judge.matches = [](const Behaviour& rollout, const Behaviour& demonstration) {
+    return !rollout.label.empty() && rollout.label == demonstration.label;
+  };
+  return judge;
+}
+
 BehaviourJudge behaviour_judge(const Env& env, const DemoSet& demos, double speed_tolerance) {
   if (env.id() == "walker") return walker_speed_judge(env.feature_names(), speed_tolerance);
-  throw std::invalid_argument(demos.path + ": task '" + env.id() + "' has no behaviour judge for transitions yet "
+  if (env.id() == "humanoid") return humanoid_style_judge(demos, env.feature_names(), env.control_timestep());
+  throw std::invalid_argument(demos.path + ": task '" + env.id() + "' has no behaviour judge for transitions "
                               "(eval/transitions.h: behaviour_judge)");
 }
 
@@ -221,9 +269,13 @@ std::vector<TransitionSummary> summarize_transitions(const std::vector<Transitio
         return std::find(policies.begin(), policies.end(), p) - policies.begin();
       };
       if (a.policy != b.policy) return rank(a.policy) < rank(b.policy);
-      const auto number = [](const std::string& s) { return std::strtod(s.c_str(), nullptr); };
-      return std::make_pair(number(a.from_label), number(a.to_label)) <
-             std::make_pair(number(b.from_label), number(b.to_label));
+      // Numbers (the walker's speeds) by value, names (the humanoid's styles) alphabetically.
+      const auto key = [](const std::string& s) {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        return !s.empty() && *end == '\0' ? std::make_pair(v, std::string()) : std::make_pair(0.0, s);
+      };
+      return std::make_pair(key(a.from_label), key(a.to_label)) < std::make_pair(key(b.from_label), key(b.to_label));
     });
   for (auto& s : out) {
     s.up_at_blend /= s.n;

@@ -3,7 +3,7 @@
 // conditioning linearly to z_B over 20 control steps at mid-episode, run to the episode's end,
 // and ask whether the body stayed up and whether what it does after the blend is B's behaviour.
 // "Behaviour" is the task's to say (BehaviourJudge): the walker's is its speed; the humanoid's
-// will be its style (experts/humanoid_gait.h's classifier).
+// its style (experts/humanoid_gait.h's classifier).
 #pragma once
 
 #include <torch/torch.h>
@@ -54,6 +54,7 @@ struct Behaviour {
 struct BehaviourJudge {
   std::string noun;  // what the label is, for tables: "speed", "style"
   std::string rule;  // what `matches` asks, for tables: "the speed is within 0.25 m/s of B's demonstration's"
+  std::string speed_feature;  // the feature a behaviour's speed is the mean of: com_speed, forward_speed
   // The demonstration's own behaviour; pairs "of different behaviours" differ in label.
   std::function<Behaviour(const DemoSet& demos, int64_t episode)> of_demonstration;
   // A rollout's over the states reached by its actions from `from_step` on (steps from_step+1..T).
@@ -67,9 +68,17 @@ struct BehaviourJudge {
 // demonstration's achieved speed (issue 36: 0.25 m/s).
 BehaviourJudge walker_speed_judge(const std::vector<std::string>& feature_names, double tolerance = 0.25);
 
-// The judge for the demonstrations' task (by the environment's id); throws one line naming the
-// task when it has none yet. The humanoid's goes here: the style classifier fitted on the
-// demonstrations' style labels, the label its prediction over the rollout's stretch.
+// The humanoid's: the label is the demonstration's style (its expert id, "train/walk"); a
+// rollout's is the style that experts/humanoid_gait.h's nearest-centroid classifier names from the
+// gait signature of its stretch, the classifier fitted on the same stretch of every demonstration
+// of `demos` (their own gait over the same seconds of the episode, not their start from
+// standing); a rollout matches when it is named the demonstration's style. The speed is the
+// signature's mean forward speed. `feature_names`: the environment's (the rollouts'); dt its
+// control step.
+BehaviourJudge humanoid_style_judge(const DemoSet& demos, const std::vector<std::string>& feature_names, double dt);
+
+// The judge for the demonstrations' task (by the environment's id): the walker's or the
+// humanoid's; throws one line naming the task when it has none.
 BehaviourJudge behaviour_judge(const Env& env, const DemoSet& demos, double speed_tolerance = 0.25);
 
 struct TransitionPair {

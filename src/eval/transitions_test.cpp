@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "data/record.h"
+#include "env/humanoid.h"
 #include "env/walker.h"
 #include "vae/toy_trajectories.h"
 #include "vae/trained_vae.h"
@@ -108,6 +109,66 @@ TEST(Transitions, WalkerJudgeMeasuresTheSpeedAfterAStepAndMatchesWithinTheTolera
   EXPECT_DOUBLE_EQ(d.speed, demos.episodes[2].attributes.at("mean_com_speed"));
   EXPECT_EQ(behaviour_judge(env, demos).noun, "speed");
   EXPECT_THROW(walker_speed_judge({"torso_height"}), std::invalid_argument);
+}
+
+// A humanoid style as two of the gait signature's statistics: forward speed and hand height.
+struct Style {
+  double speed, hand_z;
+};
+constexpr Style kWalk{1.2, -0.3}, kChicken{0.6, 0.1};
+
+// A 20-step humanoid episode (its features only) in style `before` up to state `switch_at`, then
+// in `after`; `wobble` moves the speed a little, as one demonstration differs from the next.
+Episode styled_episode(const std::vector<std::string>& names, Style before, Style after, int switch_at,
+                       double wobble = 0) {
+  const auto col = [&](const char* name) { return std::find(names.begin(), names.end(), name) - names.begin(); };
+  Episode e;
+  e.rewards.assign(20, 0.0);
+  e.features.assign(21 * names.size(), 0.0);
+  for (int t = 0; t <= 20; ++t) {
+    const Style& s = t <= switch_at ? before : after;
+    double* row = e.features.data() + t * names.size();
+    row[col("forward_speed")] = s.speed + wobble;
+    row[col("root_height")] = 0.9;
+    row[col("lhand_z")] = row[col("rhand_z")] = s.hand_z;
+  }
+  return e;
+}
+
+TEST(Transitions, HumanoidJudgeNamesTheStyleAfterTheBlendByTheDemonstrationsClassifier) {
+  const HumanoidEnv env;
+  const auto& names = env.feature_names();
+  DemoSet demos{"styles.h5", header_for(env), {}};
+  for (int i = 0; i < 6; ++i) {
+    const Style s = i % 2 ? kChicken : kWalk;
+    demos.episodes.push_back(styled_episode(names, s, s, 20, 0.02 * i));
+    demos.episodes.back().expert_id = i % 2 ? "train/chicken" : "train/walk";
+  }
+  const auto judge = behaviour_judge(env, demos);
+  EXPECT_EQ(judge.noun, "style");
+  EXPECT_EQ(judge.speed_feature, "forward_speed");
+  const Behaviour walk = judge.of_demonstration(demos, 0), chicken = judge.of_demonstration(demos, 1);
+  EXPECT_EQ(walk.label, "train/walk");
+  EXPECT_EQ(chicken.label, "train/chicken");
+  EXPECT_NEAR(chicken.speed, 0.62, 1e-12);  // the mean forward speed
+
+  // Walks, then (from step 12 on) does the chicken: named chicken after step 12, walk before 8.
+  const Episode transition = styled_episode(names, kWalk, kChicken, 12);
+  const Behaviour after = judge.of_rollout(transition, 12);
+  EXPECT_EQ(after.label, "train/chicken");
+  EXPECT_NEAR(after.speed, 0.6, 1e-12);
+  EXPECT_TRUE(judge.matches(after, chicken));
+  EXPECT_FALSE(judge.matches(after, walk));
+  EXPECT_EQ(judge.of_rollout(transition, 0).label, "train/walk");  // 12 of its 20 steps walk
+  EXPECT_EQ(judge.of_rollout(styled_episode(names, kChicken, kWalk, 4), 8).label, "train/walk");
+  // A rollout that ended before the stretch has no style and matches nothing.
+  Episode fell = transition;
+  fell.rewards.resize(10);
+  fell.features.resize(11 * names.size());
+  EXPECT_EQ(judge.of_rollout(fell, 12).label, "");
+  EXPECT_FALSE(judge.matches(judge.of_rollout(fell, 12), chicken));
+  // Pairs are drawn between styles.
+  EXPECT_EQ(sample_pairs({0, 1, 2}, {walk.label, chicken.label, walk.label}, 10, 1).size(), 4u);
 }
 
 TEST(TransitionPairs, AllOrderedPairsSamplesOfDifferentLabelsAndReferences) {

@@ -18,9 +18,10 @@ int column(const std::vector<std::string>& names, const std::string& name) {
 double turn(double a, double b) { return std::remainder(b - a, 2 * M_PI); }
 }  // namespace
 
-GaitSignature gait_signature(const Episode& episode, const std::vector<std::string>& names, double dt) {
-  const int n = static_cast<int>(names.size()), steps = episode.length();
-  if (steps < 1) throw std::invalid_argument("gait signature: an episode without steps");
+GaitSignature gait_signature(const Episode& episode, const std::vector<std::string>& names, double dt, int from) {
+  const int n = static_cast<int>(names.size()), steps = episode.length() - from;
+  if (from < 0 || steps < 1)
+    throw std::invalid_argument("gait signature: an episode without steps after control step " + std::to_string(from));
   const int speed = column(names, "forward_speed"), heading = column(names, "heading"),
             root = column(names, "root_height"), head_x = column(names, "head_x"), lhand_x = column(names, "lhand_x"),
             lhand_y = column(names, "lhand_y"), lhand_z = column(names, "lhand_z"), rhand_y = column(names, "rhand_y"),
@@ -28,7 +29,7 @@ GaitSignature gait_signature(const Episode& episode, const std::vector<std::stri
   auto at = [&](int t, int f) { return episode.features[static_cast<size_t>(t) * n + f]; };
   GaitSignature sum{};
   double swing_sq = 0;
-  for (int t = 1; t <= steps; ++t) {
+  for (int t = from + 1; t <= episode.length(); ++t) {
     sum[0] += at(t, speed);
     sum[1] += std::abs(turn(at(t - 1, heading), at(t, heading))) / dt;
     sum[2] += at(t, root);
@@ -82,6 +83,34 @@ int NearestCentroid::predict(const GaitSignature& row) const {
     }
   }
   return best;
+}
+
+StyleLabels style_labels(const DemoSet& demos) {
+  StyleLabels labels;
+  for (const auto& e : demos.episodes) {
+    const auto known = std::find(labels.names.begin(), labels.names.end(), e.expert_id);
+    labels.of_episode.push_back(static_cast<int>(known - labels.names.begin()));
+    if (known == labels.names.end()) labels.names.push_back(e.expert_id);
+  }
+  return labels;
+}
+
+StyleClassifier::StyleClassifier(const DemoSet& demos, double dt, int from) : labels_(style_labels(demos)), from_(from) {
+  std::vector<GaitSignature> rows;
+  std::vector<int> labels;
+  for (size_t i = 0; i < demos.episodes.size(); ++i) {
+    if (demos.episodes[i].length() <= from) continue;
+    rows.push_back(gait_signature(demos.episodes[i], demos.header.feature_names, dt, from));
+    labels.push_back(labels_.of_episode[i]);
+  }
+  if (rows.empty())
+    throw std::invalid_argument(demos.path + ": no demonstration runs past control step " + std::to_string(from) +
+                                " to name styles by");
+  classifier_.fit(rows, labels);
+}
+
+std::string StyleClassifier::name(const GaitSignature& signature) const {
+  return labels_.names.at(classifier_.predict(signature));
 }
 
 double accuracy(const Confusion& confusion) {

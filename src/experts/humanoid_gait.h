@@ -26,9 +26,11 @@ inline constexpr std::array<const char*, 8> kGaitStatistics = {
     "arm_swing"};
 using GaitSignature = std::array<double, kGaitStatistics.size()>;
 
-// feature_names: the humanoid's (HumanoidEnv::feature_names()); dt: its control step. Throws
-// naming a missing feature, or for an episode without steps.
-GaitSignature gait_signature(const Episode& episode, const std::vector<std::string>& feature_names, double dt);
+// feature_names: the humanoid's (HumanoidEnv::feature_names()); dt: its control step. Over the
+// states after control step `from` (from+1..T; 0: the whole episode). Throws naming a missing
+// feature, or for an episode without steps after `from`.
+GaitSignature gait_signature(const Episode& episode, const std::vector<std::string>& feature_names, double dt,
+                             int from = 0);
 
 // Nearest centroid on statistics standardised by their spread over the fitted rows.
 class NearestCentroid {
@@ -39,6 +41,31 @@ class NearestCentroid {
  private:
   GaitSignature mean_{}, scale_{};
   std::map<int, GaitSignature> centroids_;  // standardised
+};
+
+// The styles of a demonstration file: its expert ids ("train/walk"; the gait controllers' styles)
+// in order of appearance, and each episode's index into them.
+struct StyleLabels {
+  std::vector<std::string> names;
+  std::vector<int> of_episode;
+};
+StyleLabels style_labels(const DemoSet& demos);
+
+// Names the style of an episode's stretch after control step `from`: a NearestCentroid fitted on
+// the signatures of the same stretch of the file's own demonstrations (those longer than `from`),
+// so that a stretch is compared with the demonstrations' gait over the same time of the episode,
+// not with their start from standing. Throws when no demonstration is longer than `from`.
+class StyleClassifier {
+ public:
+  StyleClassifier(const DemoSet& demos, double dt, int from = 0);
+  // The style of a signature of such a stretch (one of the file's expert ids).
+  std::string name(const GaitSignature& signature) const;
+  int from() const { return from_; }
+
+ private:
+  StyleLabels labels_;
+  NearestCentroid classifier_;
+  int from_ = 0;
 };
 
 // confusion[true label][predicted label] = count.

@@ -47,6 +47,54 @@ TEST(GaitSignature, MatchesHandComputedStatistics) {
   EXPECT_THROW(gait_signature(e, {"forward_speed"}, 0.03), std::invalid_argument);
 }
 
+TEST(GaitSignature, AfterAStepTakesOnlyTheStatesThatFollowIt) {
+  const auto names = HumanoidEnv().feature_names();
+  const Episode e = hand_made(names, {{"forward_speed", {9, 1, 2, 4}}, {"lhand_x", {0, 5, 0.1, 0.3}}});
+  const GaitSignature s = gait_signature(e, names, 0.03, 1);
+  EXPECT_NEAR(s[0], 3.0, 1e-12);
+  EXPECT_NEAR(s[7], 0.1, 1e-12);  // {0.1, 0.3}
+  EXPECT_THROW(gait_signature(e, names, 0.03, 3), std::invalid_argument);
+}
+
+// Two styles that both start from standing (speed 0, hands down) and differ afterwards: the
+// demonstrations' second halves walk at 1.2 m/s with low hands ("train/walk") or at 0.6 m/s with
+// raised hands ("train/chicken").
+DemoSet two_style_demos() {
+  DemoSet demos;
+  demos.path = "two_styles.h5";
+  demos.header.feature_names = HumanoidEnv().feature_names();
+  const auto& names = demos.header.feature_names;
+  for (int i = 0; i < 6; ++i) {
+    const bool walk = i % 2 == 0;
+    const double wobble = 0.01 * i;
+    Episode e = hand_made(names, {{"forward_speed", {0, 0, walk ? 1.2 + wobble : 0.6 + wobble, walk ? 1.2 : 0.6}},
+                                  {"lhand_z", {-0.3, -0.3, walk ? -0.3 : 0.1, walk ? -0.3 : 0.1}},
+                                  {"rhand_z", {-0.3, -0.3, walk ? -0.3 : 0.1, walk ? -0.3 : 0.1}}});
+    e.expert_id = walk ? "train/walk" : "train/chicken";
+    demos.episodes.push_back(e);
+  }
+  return demos;
+}
+
+TEST(StyleClassifier, NamesAStretchByTheDemonstrationsSameStretch) {
+  const DemoSet demos = two_style_demos();
+  const StyleLabels labels = style_labels(demos);
+  EXPECT_EQ(labels.names, (std::vector<std::string>{"train/walk", "train/chicken"}));
+  EXPECT_EQ(labels.of_episode, (std::vector<int>{0, 1, 0, 1, 0, 1}));
+  const auto& names = demos.header.feature_names;
+  // A rollout that starts like either and then walks at 1.1 m/s with its hands up a little.
+  const Episode rollout =
+      hand_made(names, {{"forward_speed", {0, 0, 1.1, 1.1}}, {"lhand_z", {-0.3, -0.3, -0.2, -0.2}},
+                        {"rhand_z", {-0.3, -0.3, -0.2, -0.2}}});
+  const StyleClassifier after_one(demos, 0.03, 1);
+  EXPECT_EQ(after_one.name(gait_signature(rollout, names, 0.03, 1)), "train/walk");
+  const Episode chicken = hand_made(names, {{"forward_speed", {0, 0, 0.7, 0.5}}, {"lhand_z", {0, 0, 0.2, 0.0}},
+                                            {"rhand_z", {0, 0, 0.1, 0.1}}});
+  EXPECT_EQ(after_one.name(gait_signature(chicken, names, 0.03, 1)), "train/chicken");
+  EXPECT_EQ(StyleClassifier(demos, 0.03).name(gait_signature(demos.episodes[3], names, 0.03)), "train/chicken");
+  EXPECT_THROW(StyleClassifier(demos, 0.03, 3), std::invalid_argument);  // no demonstration runs past step 3
+}
+
 TEST(NearestCentroid, NamesSeparatedStylesAndCountsItsMistakes) {
   // Two styles apart in speed only (the other statistics constant), the speed's spread
   // standardised away; a third row of style 1 sits nearer style 0's centroid.
