@@ -47,6 +47,10 @@ printf 'panel,series,style,x,y\nA to B,vae,solid,0,1\nA to B,vae,solid,1,2\nA to
   > "$tmp/series.csv"
 draws timeseries.py --csv "$tmp/series.csv" --shade 0.25,0.5 --smooth 2 --columns 2
 
+printf 'group,series,value\ntrain/walk,vae,40\ntrain/walk,diverse_gail,5\neval/old,vae,60\neval/old,diverse_gail,0\ntrain/cat,vae,10\n' \
+  > "$tmp/bars.csv"
+draws bars.py --csv "$tmp/bars.csv" --ylabel "falls (%)"
+
 # Vector output by the extension.
 "$python" "$here/curves.py" --csv "$tmp/metrics.csv" --y val_loss --out "$tmp/out.svg" && grep -q '<svg' "$tmp/out.svg" ||
   fail "curves.py --out out.svg: no SVG"
@@ -64,6 +68,8 @@ grep -q "missing.csv: No such file" "$tmp/stderr" && [ ! -e "$tmp/out.png" ] ||
 grep -q "metrics.csv: no column 'path'" "$tmp/stderr" || fail "paths.py without a path column: $(cat "$tmp/stderr")"
 "$python" "$here/timeseries.py" --csv "$tmp/series.csv" --shade 1 --out "$tmp/out.png" 2> "$tmp/stderr"
 grep -q "shade: two numbers" "$tmp/stderr" || fail "timeseries.py --shade 1: $(cat "$tmp/stderr")"
+"$python" "$here/bars.py" --csv "$tmp/metrics.csv" --out "$tmp/out.png" 2> "$tmp/stderr"
+grep -q "metrics.csv: no column 'group'" "$tmp/stderr" || fail "bars.py without a group column: $(cat "$tmp/stderr")"
 ls "$tmp" | grep -q 'tmp-' && fail "a temporary figure was left behind: $(ls "$tmp")"
 
 echo "plots_test: $failures failure(s)"

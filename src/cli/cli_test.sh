@@ -183,6 +183,35 @@ styles=("$root/configs/humanoid_styles/train/old.json" "$root/configs/humanoid_s
   "$v" demos styles --demos "$tmp/h.h5" > "$tmp/stdout" 2>&1 && grep -q "of 2 held-out episodes named right" "$tmp/stdout" &&
   grep -q "train/chicken" "$tmp/stdout" || fail "demos collect --task humanoid --styles, demos styles: $(cat "$tmp/stdout")"
 expect_error "--styles is for --task humanoid" "$tmp/w.h5" -- demos collect --styles "${styles[0]}" --out "$tmp/w.h5"
+
+# ---- the humanoid's later stages at tiny scale: VAE, GAIL by the humanoid preset, eval humanoid, transitions, bench
+run_in "$tmp" demos collect --task humanoid --styles "$root/configs/humanoid_styles/train/walk.json" --episodes-per-expert 2 \
+  --threads 2 --out "$tmp/h_eval.h5"
+run_in "$tmp" vae train --demos "$tmp/h.h5" --run-dir "$tmp/h_vae" --preset humanoid --config "$tmp/tiny.json" --epochs 1
+run_in "$tmp" gail train --demos "$tmp/h.h5" --vae "$tmp/h_vae" --run-dir "$tmp/h_gail" --iterations 1 --envs 2 \
+  --steps-per-env 16
+tr -d ' \n' < "$tmp/h_gail/config.json" > "$tmp/h_gail_config"
+grep -q '"policy_hidden":\[300,200,100\]' "$tmp/h_gail_config" && grep -q '"discriminator_hidden":\[300,200\]' "$tmp/h_gail_config" &&
+  grep -q '"discriminator_state_indices":\[112,113,' "$tmp/h_gail_config" && grep -q ',136\]' "$tmp/h_gail_config" &&
+  grep -q '"iterations":1,' "$tmp/h_gail_config" || fail "gail train on the humanoid: not its preset: $(cat "$tmp/h_gail_config")"
+run_in "$tmp" eval humanoid --demos "$tmp/h.h5" --eval-demos "$tmp/h_eval.h5" --vae "$tmp/h_vae" --gail "$tmp/h_gail" \
+  --episodes-per-style 2 --threads 2 --out-dir "$tmp/h_evaluation"
+grep -q '^| train | all | diverse_gail | 4 |' "$tmp/h_evaluation/summary.md" &&
+  grep -q '^| eval | train/walk | vae | 2 |' "$tmp/h_evaluation/summary.md" &&
+  [ "$(wc -l < "$tmp/h_evaluation/imitation.csv")" -eq 13 ] && grep -q '"summaries"' "$tmp/h_evaluation/summary.json" &&
+  grep -q '^train/chicken,diverse_gail,' "$tmp/h_evaluation/falls.csv" && grep -q '^eval: train/walk,vae,' "$tmp/h_evaluation/falls.csv" ||
+  fail "eval humanoid: $(cat "$tmp/stdout")"
+expect_error "recorded on task 'walker', not on --task humanoid" "$tmp/h_e" -- eval humanoid --demos "$tmp/one.h5" \
+  --vae "$walker_vae" --out-dir "$tmp/h_e"
+run_in "$tmp" eval transitions --demos "$tmp/h.h5" --vae "$tmp/h_vae" --gail "$tmp/h_gail" --per-expert 2 --pairs 2 \
+  --figure-pairs 1 --out-dir "$tmp/h_transitions"
+grep -q '| diverse_gail | A, B of different styles | 2 |' "$tmp/h_transitions/summary.md" &&
+  grep -qE '^\| vae \| train/(old|chicken) \| train/(old|chicken) \| ' "$tmp/h_transitions/summary.md" ||
+  fail "eval transitions on the humanoid: $(cat "$tmp/stdout")"
+run_in "$tmp" bench gail --task humanoid --demos "$tmp/h.h5" --vae "$tmp/h_vae" --envs 2 --iterations 1 --physics-seconds 0.1
+grep -q '^bench gail: humanoid, diverse mode, 2 environments x 334 steps' "$tmp/stdout" &&
+  grep -q 'of the all-core raw physics ceiling' "$tmp/stdout" || fail "bench gail --task humanoid: $(cat "$tmp/stdout")"
+expect_error "data/humanoid/train.h5: no such file" "" -- bench gail --task humanoid
 expect_error "demos styles reads humanoid demonstrations" "" -- demos styles --demos "$tmp/one.h5"
 printf '{"parameters": {}, "targets": {"grace": [1, 1]}, "tune": {"parameters": {}}}' > "$tmp/style.json"
 expect_error "$tmp/style.json: target 'grace' is not a style measure" "" -- experts tune "$tmp/style.json" --run-dir "$tmp/tune"

@@ -15,10 +15,11 @@ void add_quickstart_command(CLI::App& app);
 void add_vae_commands(CLI::App& app);  // vae train/embed/knn/imitate/interpolate, bench vae
 void add_plot_commands(CLI::App& app);  // plot curves/tsne/histogram
 void add_gail_commands(CLI::App& app);  // gail train, bc train
-void add_eval_commands(CLI::App& app);  // eval walker/arm/body/transitions
+void add_eval_commands(CLI::App& app);  // eval walker/arm/body/transitions/humanoid
 void add_eval_arm(CLI::App& eval);
 void add_eval_body(CLI::App& eval);
 void add_eval_transitions(CLI::App& eval);
+void add_eval_humanoid(CLI::App& eval);
 void add_render_commands(CLI::App& app);  // render, bench render
 void add_export_command(CLI::App& app);  // export: a run's weights file
 

@@ -198,6 +198,7 @@ void add_eval_commands(CLI::App& app) {
   add_eval_arm(*eval);
   add_eval_body(*eval);
   add_eval_transitions(*eval);
+  add_eval_humanoid(*eval);
 }
 
 }  // namespace vaegail::cli

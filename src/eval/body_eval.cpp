@@ -43,7 +43,7 @@ std::vector<double> feature_errors(const Episode& demo, const DemoHeader& header
 
 BodyEval evaluate_body(const Env& prototype, const DemoSet& demos, const std::vector<int64_t>& episodes,
                        const torch::Tensor& z, const std::vector<NamedPolicy>& policies,
-                       const vae::ImitationOptions& options, Progress* progress) {
+                       const vae::ImitationOptions& options, Progress* progress, const ImitationScorer& score) {
   BodyEval out;
   out.features = shared_features(prototype, demos.header);
   vae::ImitationOptions o = options;
@@ -58,9 +58,11 @@ BodyEval evaluate_body(const Env& prototype, const DemoSet& demos, const std::ve
       row.expert_id = demo.expert_id;
       row.episode = episodes[k];
       row.fell = outcomes[k].fell;
+      row.fall_step = outcomes[k].fall_step;
       row.steps = outcomes[k].episode.length();
       row.demo_steps = demo.length();
       row.feature_errors = feature_errors(demo, demos.header, outcomes[k].episode, prototype, out.features);
+      if (score) score(row, outcomes[k].episode);
       out.rows.push_back(std::move(row));
     }
   }
@@ -68,12 +70,12 @@ BodyEval evaluate_body(const Env& prototype, const DemoSet& demos, const std::ve
 }
 
 std::string body_rows_csv(const BodyEval& eval) {
-  std::string csv = "policy,episode,expert_id,fell,steps,demo_steps";
+  std::string csv = "policy,episode,expert_id,fell,fall_step,steps,demo_steps";
   for (const auto& f : eval.features) csv += ",error_" + f;
   csv += "\n";
   for (const auto& r : eval.rows) {
     csv += r.policy + "," + std::to_string(r.episode) + "," + r.expert_id + "," + (r.fell ? "1" : "0") + "," +
-           std::to_string(r.steps) + "," + std::to_string(r.demo_steps);
+           std::to_string(r.fall_step) + "," + std::to_string(r.steps) + "," + std::to_string(r.demo_steps);
     for (double e : r.feature_errors) csv += "," + short_number(e);
     csv += "\n";
   }

@@ -10,6 +10,7 @@
 
 #include <torch/torch.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct BodyRow {
   std::string policy, expert_id;
   int64_t episode = 0;
   bool fell = false;
+  int fall_step = -1;  // the first control step whose state had fallen, or the terminating one; -1: none
   int steps = 0, demo_steps = 0;
   std::vector<double> feature_errors;  // one per BodyEval::features
 };
@@ -39,12 +41,17 @@ std::vector<std::string> shared_features(const Env& env, const DemoHeader& heade
 std::vector<double> feature_errors(const Episode& demo, const DemoHeader& header, const Episode& imitation,
                                    const Env& env, const std::vector<std::string>& features);
 
+// A task's own measure of an imitation (the humanoid's style): called with each row and its
+// rollout, in row order.
+using ImitationScorer = std::function<void(const BodyRow& row, const Episode& imitation)>;
+
 // Every policy imitates every listed episode; z [episodes.size(), Z] holds their embeddings.
 BodyEval evaluate_body(const Env& prototype, const DemoSet& demos, const std::vector<int64_t>& episodes,
                        const torch::Tensor& z, const std::vector<NamedPolicy>& policies,
-                       const vae::ImitationOptions& options = {}, Progress* progress = nullptr);
+                       const vae::ImitationOptions& options = {}, Progress* progress = nullptr,
+                       const ImitationScorer& score = nullptr);
 
-// One row per imitation: policy, episode, expert_id, fell, steps, demo_steps, error_<feature>...
+// One row per imitation: policy, episode, expert_id, fell, fall_step, steps, demo_steps, error_<feature>...
 std::string body_rows_csv(const BodyEval& eval);
 // A Markdown table, one row per policy: imitations, fall rate, mean steps, and the mean error of
 // each scored feature.

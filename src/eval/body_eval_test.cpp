@@ -42,20 +42,27 @@ torch::Tensor idle_actions(const torch::Tensor& obs, const torch::Tensor&) { ret
 TEST(BodyEval, TheDemonstratorItselfScoresZeroErrorAndAnotherPolicyDoesNot) {
   const auto env = pendulum();
   const auto demos = push_demos(env);
-  const auto result = evaluate_body(env, demos, {0, 1}, torch::zeros({2, 2}), {{"same", push_actions}, {"idle", idle_actions}});
+  std::vector<std::string> scored;  // what the task's scorer saw: each row with its own rollout
+  const auto result = evaluate_body(env, demos, {0, 1}, torch::zeros({2, 2}), {{"same", push_actions}, {"idle", idle_actions}},
+                                    {}, nullptr, [&](const BodyRow& row, const Episode& imitation) {
+                                      EXPECT_EQ(imitation.length(), row.steps);
+                                      scored.push_back(row.policy + std::to_string(row.episode));
+                                    });
   EXPECT_EQ(result.features, env.feature_names());  // recorded by the same task: all of them
   ASSERT_EQ(result.rows.size(), 4u);
+  EXPECT_EQ(scored, (std::vector<std::string>{"same0", "same1", "idle0", "idle1"}));
   const int tip_x = 1;  // com_speed, site:tip:x, ...
   EXPECT_EQ(result.features[tip_x], "site:tip:x");
   for (int k = 0; k < 2; ++k) {
     for (double e : result.rows[k].feature_errors) EXPECT_NEAR(e, 0.0, 1e-12);
     EXPECT_EQ(result.rows[k].steps, 30);
     EXPECT_FALSE(result.rows[k].fell);
+    EXPECT_EQ(result.rows[k].fall_step, -1);
     EXPECT_GT(result.rows[2 + k].feature_errors[tip_x], 1e-3);
   }
   const std::string table = body_summary_table(result);
   EXPECT_NE(table.find("| same | 2 | 0 | 30 (30) |"), std::string::npos) << table;
-  EXPECT_NE(body_rows_csv(result).find("policy,episode,expert_id,fell,steps,demo_steps,error_com_speed"), std::string::npos);
+  EXPECT_NE(body_rows_csv(result).find("policy,episode,expert_id,fell,fall_step,steps,demo_steps,error_com_speed"), std::string::npos);
 }
 
 TEST(BodyEval, FeaturesTheFileLacksAreNotScored) {
