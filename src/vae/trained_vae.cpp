@@ -25,13 +25,14 @@ TrajectoryVae load_trained_vae(const std::string& run, const torch::Device& devi
   return model;
 }
 
-void save_vae_weights(const TrajectoryVae& model, const std::string& path) {
+void save_vae_weights(const TrajectoryVae& model, const std::string& path, int epochs) {
   write_checkpoint(path, [&](std::ostream& out) {
     torch::serialize::OutputArchive archive, model_archive;
     model->save(model_archive);
     archive.write("kind", c10::IValue("vae"));
     archive.write("config", c10::IValue(model->config().to_json()));
     archive.write("model", model_archive);
+    if (epochs >= 0) archive.write("epoch", c10::IValue(static_cast<int64_t>(epochs)));
     archive.save_to(out);
   });
 }

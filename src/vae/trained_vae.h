@@ -26,8 +26,9 @@ using LatentPolicy = std::function<torch::Tensor(const torch::Tensor& observatio
 TrajectoryVae load_trained_vae(const std::string& run, const torch::Device& device = torch::kCPU);
 
 // Writes the weights file of `model` (kind "vae": its config and parameters, no optimiser state)
-// to `path`, atomically; a failed write throws one line naming it.
-void save_vae_weights(const TrajectoryVae& model, const std::string& path);
+// to `path`, atomically; a failed write throws one line naming it. `epochs`, when >= 0, records
+// how many epochs trained it (the trainer's own copy, which a run resumes from: vae_trainer.h).
+void save_vae_weights(const TrajectoryVae& model, const std::string& path, int epochs = -1);
 
 // (mu, sigma) [M, Z] of q(z | states) for every trajectory, in batches, without gradient,
 // returned on the CPU. states [M, T+1, D] raw; step_mask [M, T] optional (as in the dataset).

@@ -150,7 +150,10 @@ VaeTrainer::VaeTrainer(const VaeConfig& config, TrainerOptions options, Trajecto
   // Every rank has read its command's files (`vae train` reads run_dir/config.json when
   // resuming) before rank 0 writes any.
   world.barrier();
-  if (std::filesystem::exists(checkpoint_path())) load_checkpoint(checkpoint_path());  // every rank
+  if (std::filesystem::exists(checkpoint_path()))
+    load_checkpoint(checkpoint_path());  // every rank
+  else if (std::filesystem::exists(weights_path()))
+    resume_from_weights();
   if (world.is_root()) {
     truncate_metrics(metrics_path(), epoch_);  // rows past the checkpoint: the resumed run redoes them
     config_.save((std::filesystem::path(options_.run_dir) / "config.json").string());
@@ -158,6 +161,30 @@ VaeTrainer::VaeTrainer(const VaeConfig& config, TrainerOptions options, Trajecto
 }
 
 std::string VaeTrainer::checkpoint_path() const { return checkpoint_file("latest.pt"); }
+
+std::string VaeTrainer::weights_path() const {
+  return (std::filesystem::path(options_.run_dir) / kWeightsFile).string();
+}
+
+void VaeTrainer::resume_from_weights() {
+  const std::string path = weights_path();
+  read_checkpoint(path, [&](const std::string& file) {
+    torch::serialize::InputArchive archive, model_archive;
+    archive.load_from(file, options_.device);
+    c10::IValue config_json, epoch;
+    archive.read("config", config_json);
+    if (VaeConfig::from_json(config_json.toStringRef()) != config_)
+      throw std::invalid_argument(path + ": weights of a VAE with a different VaeConfig");
+    if (!archive.try_read("epoch", epoch))
+      throw std::invalid_argument(path + ": an exported weights file (no epoch): resume needs the trainer's own");
+    archive.read("model", model_archive);
+    model_->load(model_archive);
+    epoch_ = static_cast<int>(epoch.toInt());
+  });
+  if (World::get().is_root())
+    std::fprintf(stderr, "vaegail: note: %s: resumed from the weights alone at epoch %d (Adam's moments start afresh)\n",
+                 path.c_str(), epoch_);
+}
 
 std::string VaeTrainer::epoch_checkpoint_path(int epoch) const {
   return checkpoint_file("epoch_" + std::to_string(epoch) + ".pt");
@@ -249,6 +276,7 @@ EpochMetrics VaeTrainer::train_epoch() {
     add_loss_terms(row, "val", m.val);
     CsvLog(metrics_path(), kMetricColumns).write(row);
     save_checkpoint(checkpoint_path());
+    save_vae_weights(model_, weights_path(), epoch_);
     if (options_.keep_epochs) save_checkpoint(epoch_checkpoint_path(e));
   }
   return m;

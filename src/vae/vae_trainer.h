@@ -6,6 +6,12 @@
 //   run_dir/metrics.csv                 one row per epoch: every loss term, train and val
 //   run_dir/checkpoints/latest.pt       model + optimizer + epoch + seed, written atomically
 //   run_dir/checkpoints/epoch_{e}.pt    the same after every epoch e, with keep_epochs
+//   run_dir/weights.pt                  the model alone and the epoch (trained_vae.h's weights file),
+//                                       after every epoch: what a repository keeps of a run that spans
+//                                       sessions (a third of latest.pt: no Adam moments). A run
+//                                       directory holding it and no checkpoint resumes from it at its
+//                                       epoch, Adam's moments starting afresh (the one difference
+//                                       from an uninterrupted run).
 //
 // Reproducibility: every random stream is derived from (seed, epoch, batch) with
 // util/rng.h's derive_seed: the weight initialisation, the epoch's shuffle and each batch's
@@ -89,6 +95,7 @@ class VaeTrainer {
 
   void save_checkpoint(const std::string& path);
   void load_checkpoint(const std::string& path);
+  std::string weights_path() const;  // run_dir/weights.pt
   std::string checkpoint_path() const;
   std::string epoch_checkpoint_path(int epoch) const;
   std::string metrics_path() const;
@@ -107,6 +114,8 @@ class VaeTrainer {
   int epoch_ = 0;
 
   std::string checkpoint_file(const std::string& name) const;  // run_dir/checkpoints/name
+  // The model and epoch of weights_path(); throws one line naming it for another config.
+  void resume_from_weights();
 };
 
 // encode() of the dataset's states and mask (trained_vae.h).

@@ -191,6 +191,34 @@ TEST_F(VaeTrainerTest, ResumeReproducesTheUninterruptedRun) {
   EXPECT_EQ(count_lines(root_ / "resumed" / "metrics.csv"), 4);
 }
 
+// What a repository keeps of a long run: weights.pt beside metrics.csv, no checkpoint. The same
+// command resumes at its epoch with its parameters; an exported weights file (no epoch) is refused.
+TEST_F(VaeTrainerTest, ARunKeptAsItsWeightsAloneResumesAtItsEpoch) {
+  const auto train = toy_dataset(8, 4, true);
+  std::vector<torch::Tensor> trained;
+  {
+    VaeTrainer first(tiny_config(), options("run", 2), train, {});
+    first.train();
+    for (const auto& p : first.model()->parameters()) trained.push_back(p.detach().clone());
+  }
+  fs::remove_all(root_ / "run" / "checkpoints");
+  {
+    VaeTrainer resumed(tiny_config(), options("run", 3), train, {});
+    EXPECT_EQ(resumed.epoch(), 2);
+    const auto parameters = resumed.model()->parameters();
+    ASSERT_EQ(parameters.size(), trained.size());
+    for (size_t k = 0; k < trained.size(); ++k) EXPECT_TRUE(torch::equal(parameters[k], trained[k])) << k;
+    EXPECT_EQ(resumed.train().size(), 1u);
+    EXPECT_EQ(count_lines(root_ / "run" / "metrics.csv"), 4);
+    save_vae_weights(resumed.model(), resumed.weights_path());  // as `vaegail export` writes it
+  }
+  fs::remove_all(root_ / "run" / "checkpoints");
+  EXPECT_NE(error_of([&] { VaeTrainer(tiny_config(), options("run", 4), train, {}); }).find("no epoch"), std::string::npos);
+  auto other = tiny_config();
+  other.latent_dim = 3;
+  EXPECT_NE(error_of([&] { VaeTrainer(other, options("run", 4), train, {}); }).find("different VaeConfig"), std::string::npos);
+}
+
 // A checkpoint on a full file system: refused in one line, the one before kept; a new trainer (the
 // rerun command) resumes from it once there is room.
 TEST_F(VaeTrainerTest, ACheckpointOnAFullDiskIsRefusedAndTheRunResumesFromTheOneBefore) {
