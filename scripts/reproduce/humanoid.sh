@@ -19,8 +19,8 @@
 #   vae    the humanoid VAE (Table 1 sizes) on data/humanoid/train.h5, both cores (mpirun -np 2) into
 #          checkpoints/humanoid/vae: about 2.5 minutes an epoch on 2 idle cores, 60 epochs; resumed by the same command
 #          from its checkpoint, or from the committed weights.pt when the checkpoints are gone (Adam restarts)
-#   embedding  the training demonstrations' embeddings, 5-NN and linear style read-outs, t-SNE coloured by style,
-#          the loss curves, into results/humanoid/vae/
+#   embedding  the training demonstrations' embeddings, their t-SNE coloured by style (the context), the loss
+#          curves, into results/humanoid/vae/
 #   gail   diverse GAIL on the frozen VAE (the humanoid preset: Tables 2-3, the discriminator on the root and end
 #          effectors), 2 ranks, into checkpoints/humanoid/diverse_gail; GAIL_ITERATIONS (default 2000) in total,
 #          resumed by the same command
@@ -86,8 +86,7 @@ embedding() {
   local out=results/humanoid/vae
   [ "$dry_run" = 1 ] || mkdir -p $out
   run $v vae embed --checkpoint $vae_run --demos data/humanoid/train.h5 --out $out/embeddings.csv
-  run_to $out/knn.txt $v vae knn --embeddings $out/embeddings.csv --k 5
-  run $v plot tsne --embeddings $out/embeddings.csv --color context_style --out $out/tsne.png
+  run $v plot tsne --embeddings $out/embeddings.csv --color context --out $out/tsne.png
   run $v plot curves --csv $vae_run/metrics.csv --y train_loss,val_loss --log-y --out $out/loss.png
 }
 
