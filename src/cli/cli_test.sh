@@ -297,7 +297,7 @@ run_in "$tmp/elsewhere" render --demos "$tmp/body.h5" --episodes 0 1 --vae "$tmp
   --width 64 --height 48 --out "$tmp/humanoid.mp4" --still "$tmp/humanoid.png" > "$tmp/stdout" 2>&1
 [ -s "$tmp/humanoid.mp4" ] && [ -s "$tmp/humanoid.png" ] && ! grep -q "departs" "$tmp/stdout" ||
   fail "render --styles of a humanoid demonstration and its expert: $(cat "$tmp/stdout")"
-expect_error "--columns lays out demonstrations alone" "$tmp/c.mp4" -- render --demos "$tmp/h.h5" --episodes 0 1 \
+expect_error "--columns lays out demonstrations alone" "$tmp/c.mp4" -- render --demos "$tmp/h.h5" --episodes 0 2 \
   --columns 2 --expert "$tmp/h/humanoid_ctx0_3_logstd-1_seed0" --out "$tmp/c.mp4"
 expect_error "its expert id 'train/old' is none of the --styles files' labels" "$tmp/c.mp4" -- \
   render --demos "$tmp/h.h5" --episodes 0 --styles "${styles[1]}" --out "$tmp/c.mp4"
