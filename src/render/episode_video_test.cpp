@@ -12,6 +12,7 @@ extern "C" {
 #include "data/record.h"
 #include "env/registry.h"
 #include "render/mp4_writer.h"
+#include "render/png_writer.h"
 #include "util/atomic_file.h"
 #include "util/test_small_fs.h"
 
@@ -213,6 +214,19 @@ TEST_F(EpisodeVideo, AVideoOnAFullDiskIsRefusedInOneLineAndTheOneBeforeKept) {
     video.finish();
   });
   EXPECT_EQ(decode(path).frames, 20);
+}
+
+// The same for a still: the PNG before stays whole and decodes.
+TEST_F(EpisodeVideo, AStillOnAFullDiskIsRefusedInOneLineAndTheOneBeforeKept) {
+  SmallFileSystem small(256 * 1024);
+  if (!small.mounted()) GTEST_SKIP() << small.why_not();
+  const std::string path = small.path("still.png");
+  std::vector<std::uint8_t> noise(64 * 48 * 3);
+  expect_refused_on_a_full_disk_then_saved(small, path, [&] {
+    for (auto& byte : noise) byte = static_cast<std::uint8_t>(std::rand());
+    write_png(path, 64, 48, noise.data());
+  });
+  EXPECT_EQ(decode_png(path).rgb, noise);
 }
 
 }  // namespace

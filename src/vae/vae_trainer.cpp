@@ -181,9 +181,17 @@ void VaeTrainer::resume_from_weights() {
     model_->load(model_archive);
     epoch_ = static_cast<int>(epoch.toInt());
   });
+  warmup_epoch_ = epoch_ + 1;
   if (World::get().is_root())
-    std::fprintf(stderr, "vaegail: note: %s: resumed from the weights alone at epoch %d (Adam's moments start afresh)\n",
-                 path.c_str(), epoch_);
+    std::fprintf(stderr, "vaegail: note: %s: resumed from the weights alone at epoch %d (Adam's moments start afresh: the rate ramps up over epoch %d)\n",
+                 path.c_str(), epoch_, warmup_epoch_);
+}
+
+double VaeTrainer::batch_learning_rate(int epoch, int64_t batch) const {
+  const double lr = scheduled_learning_rate(config_, epoch);
+  if (epoch != warmup_epoch_) return lr;
+  const int64_t batches = (train_.size() + config_.batch_size - 1) / config_.batch_size;
+  return lr * static_cast<double>(batch + 1) / static_cast<double>(batches);
 }
 
 std::string VaeTrainer::epoch_checkpoint_path(int epoch) const {
@@ -223,9 +231,6 @@ EpochMetrics VaeTrainer::train_epoch() {
     progress = std::make_unique<Progress>(
         "vae epoch " + std::to_string(e) + "/" + std::to_string(options_.epochs), batches, "batch");
 
-  const double lr = scheduled_learning_rate(config_, e);
-  for (auto& group : optimizer_->param_groups())
-    static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
   model_->train();
   const auto parameters = model_->parameters();
   LossTerms sum;
@@ -233,6 +238,9 @@ EpochMetrics VaeTrainer::train_epoch() {
     const int64_t n = std::min(bs, M - b * bs);
     // This rank's rows of the batch; the batch's mean loss is the sum over every rank's rows / n.
     const EnvSlice rows = rank_share(n);
+    const double lr = batch_learning_rate(e, b);
+    for (auto& group : optimizer_->param_groups())
+      static_cast<torch::optim::AdamOptions&>(group.options()).lr(lr);
     optimizer_->zero_grad();
     LossTerms batch_sum;  // over this rank's rows
     if (rows.count > 0) {

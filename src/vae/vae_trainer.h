@@ -100,6 +100,13 @@ class VaeTrainer {
   std::string epoch_checkpoint_path(int epoch) const;
   std::string metrics_path() const;
 
+  // The rate of minibatch `batch` (from 0) of epoch `epoch` (from 1): scheduled_learning_rate,
+  // ramped up linearly over the first epoch after a resume from weights.pt alone. Why: Adam's
+  // first steps from empty moments move every parameter by about the full rate (the
+  // bias-corrected m / sqrt(v) is +-1 per coordinate), which jolts a trained model (the
+  // humanoid VAE's loss went 4.8e4 -> 1.9e5 on the second batch after such a resume).
+  double batch_learning_rate(int epoch, int64_t batch) const;
+
   int epoch() const { return epoch_; }  // epochs completed
   TrajectoryVae& model() { return model_; }
   torch::optim::Adam& optimizer() { return *optimizer_; }
@@ -112,6 +119,7 @@ class VaeTrainer {
   TrajectoryVae model_{nullptr};
   std::unique_ptr<torch::optim::Adam> optimizer_;
   int epoch_ = 0;
+  int warmup_epoch_ = 0;  // the epoch whose rate ramps up (resume_from_weights); 0: none
 
   std::string checkpoint_file(const std::string& name) const;  // run_dir/checkpoints/name
   // The model and epoch of weights_path(); throws one line naming it for another config.

@@ -156,6 +156,7 @@ TEST_F(VaeTrainerTest, EachEpochRunsAtItsScheduledRateAndResumeKeepsTheSchedule)
     EXPECT_DOUBLE_EQ(rate(first), scheduled_learning_rate(c, 2));
   }
   VaeTrainer resumed(c, options("run", 3), train, {});
+  EXPECT_DOUBLE_EQ(resumed.batch_learning_rate(3, 0), scheduled_learning_rate(c, 3));  // Adam's moments kept: no ramp
   resumed.train();
   EXPECT_DOUBLE_EQ(rate(resumed), scheduled_learning_rate(c, 3));
   EXPECT_THROW(VaeTrainer(c, options("run", 4), train, {}), std::invalid_argument);
@@ -205,6 +206,12 @@ TEST_F(VaeTrainerTest, ARunKeptAsItsWeightsAloneResumesAtItsEpoch) {
   {
     VaeTrainer resumed(tiny_config(), options("run", 3), train, {});
     EXPECT_EQ(resumed.epoch(), 2);
+    // Adam starts afresh: the rate ramps up over the resumed epoch's three minibatches, then follows its schedule.
+    const double rate = scheduled_learning_rate(tiny_config(), 3);
+    EXPECT_DOUBLE_EQ(resumed.batch_learning_rate(3, 0), rate / 3);
+    EXPECT_DOUBLE_EQ(resumed.batch_learning_rate(3, 1), rate * 2 / 3);
+    EXPECT_DOUBLE_EQ(resumed.batch_learning_rate(3, 2), rate);
+    EXPECT_DOUBLE_EQ(resumed.batch_learning_rate(4, 0), scheduled_learning_rate(tiny_config(), 4));
     const auto parameters = resumed.model()->parameters();
     ASSERT_EQ(parameters.size(), trained.size());
     for (size_t k = 0; k < trained.size(); ++k) EXPECT_TRUE(torch::equal(parameters[k], trained[k])) << k;
@@ -232,6 +239,9 @@ TEST_F(VaeTrainerTest, ACheckpointOnAFullDiskIsRefusedAndTheRunResumesFromTheOne
     trainer.train_epoch();
     expect_refused_on_a_full_disk_then_saved(small, trainer.checkpoint_path(),
                                              [&] { trainer.save_checkpoint(trainer.checkpoint_path()); });
+    expect_refused_on_a_full_disk_then_saved(small, trainer.weights_path(), [&] {
+      save_vae_weights(trainer.model(), trainer.weights_path(), trainer.epoch());
+    });
   }
   VaeTrainer resumed(tiny_config(), o, train, {});
   EXPECT_EQ(resumed.epoch(), 1);
