@@ -87,7 +87,7 @@ embedding() {
   [ "$dry_run" = 1 ] || mkdir -p $out
   run $v vae embed --checkpoint $vae_run --demos data/humanoid/train.h5 --out $out/embeddings.csv
   run $v plot tsne --embeddings $out/embeddings.csv --color context --out $out/tsne.png
-  run $v plot curves --csv $vae_run/metrics.csv --y train_loss,val_loss --log-y --out $out/loss.png
+  run $v plot curves --csv $vae_run/metrics.csv --y train_loss,val_loss --out $out/loss.png
 }
 
 gail() {
