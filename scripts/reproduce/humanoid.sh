@@ -23,7 +23,9 @@
 #          curves, into results/humanoid/vae/
 #   gail   diverse GAIL on the frozen VAE (the humanoid preset: Tables 2-3, the discriminator on the root and end
 #          effectors), 2 ranks, into checkpoints/humanoid/diverse_gail; GAIL_ITERATIONS (default 2000) in total,
-#          resumed by the same command
+#          resumed by the same command; every 200 iterations' checkpoint kept in snapshots/it_N (not committed)
+#   course  `eval humanoid` of each snapshot on 5 training demonstrations a style: falls and style kept per style
+#          along training, into results/humanoid/course/
 #   imitation  `eval humanoid` (Figure 5 right): falls and style kept, VAE policy against fine-tuned, on the
 #          training demonstrations and one-shot on the evaluation ones, into results/humanoid/imitation/
 #   transitions  `eval transitions` between styles, into results/humanoid/transitions/
@@ -90,9 +92,33 @@ embedding() {
   run $v plot curves --csv $vae_run/metrics.csv --y train_loss,val_loss --out $out/loss.png
 }
 
+# In chunks of 200 iterations, each chunk's checkpoint kept in $gail_run/snapshots/it_N for the course stage (the
+# trainer keeps only its latest): a run interrupted mid-chunk resumes inside it.
+gail_chunk=200
+
 gail() {
-  run $mpi $v gail train --demos data/humanoid/train.h5 --vae $vae_run --run-dir $gail_run --envs 16 \
-    --iterations "${GAIL_ITERATIONS:-2000}" --seed 0
+  local total=${GAIL_ITERATIONS:-2000} n
+  for ((n = gail_chunk; n <= total; n += gail_chunk)); do
+    run $mpi $v gail train --demos data/humanoid/train.h5 --vae $vae_run --run-dir $gail_run --envs 16 \
+      --iterations $n --seed 0
+    local snap=$gail_run/snapshots/it_$n
+    [ "$dry_run" = 1 ] || [ -e $snap/checkpoints/latest.pt ] || {
+      mkdir -p $snap/checkpoints && cp $gail_run/config.json $snap/ &&
+        cp $gail_run/checkpoints/latest.pt $snap/checkpoints/latest.pt.tmp &&
+        mv $snap/checkpoints/latest.pt.tmp $snap/checkpoints/latest.pt
+    }
+  done
+}
+
+# Whether the styles survive fine-tuning (the walker lost two of its four speeds): `eval humanoid` on each kept
+# snapshot, 5 training demonstrations a style, into results/humanoid/course/it_N/, and their per-style table.
+course() {
+  local snap
+  for snap in $gail_run/snapshots/it_*; do
+    [ -e "$snap/checkpoints/latest.pt" ] || continue
+    run $v eval humanoid --demos data/humanoid/train.h5 --vae $vae_run --gail "$snap" --episodes-per-style 5 \
+      --threads 2 --out-dir "results/humanoid/course/$(basename "$snap")"
+  done
 }
 
 imitation() {
@@ -105,4 +131,4 @@ transitions() {
     --gail $gail_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions
 }
 
-run_stages tune controllers demos video vae embedding gail imitation transitions
+run_stages tune controllers demos video vae embedding gail course imitation transitions
