@@ -28,6 +28,8 @@
 #          along training, into results/humanoid/course/
 #   imitation  `eval humanoid` (Figure 5 right): falls and style kept, VAE policy against fine-tuned, on the
 #          training demonstrations and one-shot on the evaluation ones, into results/humanoid/imitation/
+#   figure5  Figure 5 left: a demonstration of every style beside its VAE and fine-tuned imitations (`render`), the
+#          videos results/humanoid/imitation_{train,eval}.mp4 (not committed), their stills in docs/figures/
 #   transitions  `eval transitions` between styles, into results/humanoid/transitions/
 #   all    every stage above in order
 # The style files are committed with their tuned parameters, so `controllers demos` regenerates every published humanoid
@@ -126,9 +128,23 @@ imitation() {
     --gail $gail_run --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation
 }
 
+# Figure 5 left: the first demonstration of each style (episode i is style i mod K; replayed by its controller)
+# beside its VAE and fine-tuned imitations, training styles and, one-shot, evaluation styles; the videos (not
+# committed) and a still of each.
+figure5() {
+  local set
+  for set in train eval; do
+    local styles=("${train_styles[@]}")
+    [ $set = eval ] && styles=("${eval_styles[@]}")
+    run $v render --demos data/humanoid/$set.h5 --episodes $(seq -s ' ' 0 $((${#styles[@]} - 1))) --vae $vae_run \
+      --gail $gail_run --styles "${styles[@]}" --azimuth 120 --elevation -15 --out results/humanoid/imitation_$set.mp4 \
+      --still docs/figures/humanoid_imitation_$set.png --still-frame 100
+  done
+}
+
 transitions() {
   run_to results/humanoid/transitions.txt $v eval transitions --demos data/humanoid/train.h5 --vae $vae_run \
     --gail $gail_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions
 }
 
-run_stages tune controllers demos video vae embedding gail course imitation transitions
+run_stages tune controllers demos video vae embedding gail course imitation figure5 transitions
