@@ -31,6 +31,11 @@
 #   figure5  Figure 5 left: a demonstration of every style beside its VAE and fine-tuned imitations (`render`), the
 #          videos results/humanoid/imitation_{train,eval}.mp4 (not committed), their stills in docs/figures/
 #   transitions  `eval transitions` between styles, into results/humanoid/transitions/
+#   dart   the DART ablation's demonstrations: data/humanoid/train_dart.h5, the training styles recorded under
+#          Gaussian noise (std 0.1) on every motor command, each step labelled with the clean controller's command
+#   vae_dart  the VAE on them (as `vae`), into checkpoints/humanoid/vae_dart, resumed by the same command
+#   imitation_dart  `eval humanoid` of the DART VAE's policy on the clean demonstrations, into
+#          results/humanoid/imitation_dart/
 #   all    every stage above in order
 # The style files are committed with their tuned parameters, so `controllers demos` regenerates every published humanoid
 # figure; the demonstration files are not committed (they are remade in minutes). --dry-run prints the commands.
@@ -80,6 +85,7 @@ mpi="mpirun -np 2 --bind-to none"
 [ "$(id -u)" = 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 vae_run=checkpoints/humanoid/vae
 gail_run=checkpoints/humanoid/diverse_gail
+vae_dart_run=checkpoints/humanoid/vae_dart
 
 vae() {
   run $mpi $v vae train --demos data/humanoid/train.h5 --run-dir $vae_run --preset humanoid --epochs 60 \
@@ -138,8 +144,29 @@ figure5() {
     [ $set = eval ] && styles=("${eval_styles[@]}")
     run $v render --demos data/humanoid/$set.h5 --episodes $(seq -s ' ' 0 $((${#styles[@]} - 1))) --vae $vae_run \
       --gail $gail_run --styles "${styles[@]}" --azimuth 120 --elevation -15 --out results/humanoid/imitation_$set.mp4 \
-      --still docs/figures/humanoid_imitation_$set.png --still-frame 100
+      --width 240 --height 180 --still docs/figures/humanoid_imitation_$set.png --still-frame 15 45 150
   done
+}
+
+# The DART ablation (issue 50, item 3): the training styles' demonstrations recorded while Gaussian noise (std 0.1)
+# perturbs every motor command, each step labelled with the clean controller's command from the state the noise led
+# to (`demos collect --action-noise`); the VAE trained on them as on the clean set; its policy imitating the clean
+# demonstrations, beside the clean VAE's.
+dart() {
+  run $v demos collect --task humanoid --styles "${train_styles[@]}" --episodes-per-expert 250 --threads 2 \
+    --action-noise 0.1 --out data/humanoid/train_dart.h5 --force
+  run_to results/humanoid/train_dart_demos.txt $v data info data/humanoid/train_dart.h5
+}
+
+vae_dart() {
+  ensure data/humanoid/train_dart.h5 dart
+  run $mpi $v vae train --demos data/humanoid/train_dart.h5 --run-dir $vae_dart_run --preset humanoid --epochs 60 \
+    --batch-size 16 --lr 5e-4 --seed 0
+}
+
+imitation_dart() {
+  run $v eval humanoid --demos data/humanoid/train.h5 --eval-demos data/humanoid/eval.h5 --vae $vae_dart_run \
+    --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_dart
 }
 
 transitions() {
@@ -147,4 +174,5 @@ transitions() {
     --gail $gail_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions
 }
 
-run_stages tune controllers demos video vae embedding gail course imitation figure5 transitions
+run_stages tune controllers demos video vae embedding gail course imitation figure5 transitions dart vae_dart \
+  imitation_dart

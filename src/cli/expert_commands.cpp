@@ -316,6 +316,7 @@ struct CollectFlags {
   CollectOptions collect;
   bool force = false;
   std::vector<std::string> styles;  // humanoid: gait controllers' style files
+  double action_noise = 0;          // with them: DART's execution noise
 };
 
 // The humanoid's gait controllers: --episodes in all (default 250), episode i in style i mod K.
@@ -326,6 +327,7 @@ void collect_gait_demos(const CollectFlags& f) {
   o.episodes = f.episodes > 0 ? f.episodes : o.episodes;
   o.seed = f.collect.seed;
   o.threads = f.collect.threads;
+  o.action_noise = f.action_noise;
   DemoHeader header;
   Progress progress("collect", o.episodes, "episodes");
   const std::vector<Episode> episodes = record_gait_demos(styles, o, &header, &progress);
@@ -333,12 +335,15 @@ void collect_gait_demos(const CollectFlags& f) {
   for (const auto& e : episodes) writer.append(e);
   writer.commit();
   progress.finish();
-  std::printf("wrote %s: %zu gait styles, %d episodes\n", f.out.c_str(), styles.size(), o.episodes);
+  std::printf("wrote %s: %zu gait styles, %d episodes%s\n", f.out.c_str(), styles.size(), o.episodes,
+              o.action_noise > 0 ? fmt::format(" (execution noise {}, clean labels)", o.action_noise).c_str() : "");
 }
 
 void run_collect(CollectFlags f) {
   const RunLock lock = lock_output_file(f.out);
   if (fs::exists(f.out) && !f.force) throw std::runtime_error(f.out + ": exists (pass --force to replace it)");
+  if (f.action_noise > 0 && f.styles.empty())
+    throw std::invalid_argument("--action-noise is for the humanoid's gait controllers (--styles)");
   if (!f.styles.empty()) {
     if (f.task != "humanoid") throw std::invalid_argument("--styles is for --task humanoid (gait controllers)");
     if (fs::path(f.out).has_parent_path()) fs::create_directories(fs::path(f.out).parent_path());
@@ -495,6 +500,8 @@ void add_expert_commands(CLI::App& app) {
   collect->add_option("--seed", c->collect.seed, "episode seeds")->capture_default_str();
   collect->add_option("--styles", c->styles, "humanoid: gait controllers' style files (configs/humanoid_styles/*/*.json) instead of --experts-dir; --episodes-per-expert is then the episodes in all (default 250), episode i in style i mod K")
       ->check(CLI::ExistingFile);
+  collect->add_option("--action-noise", c->action_noise, "humanoid --styles: std of Gaussian noise on every motor command, one draw per control step, while each step records the clean controller's mean command from its start state (DART; 0: clean demonstrations)")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   collect->add_option("--threads", c->collect.threads, "episodes stepped at once (one core each)")->check(CLI::Range(1, 64))->capture_default_str();
   collect->add_flag("--force", c->force, "replace an existing output file");
   collect->callback([c] { run_collect(*c); });

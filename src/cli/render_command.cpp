@@ -106,8 +106,10 @@ void add_render(CLI::App& app) {
       ->check(CLI::Range(1, 64));
   c->add_option("--out", f->out, "the video (.mp4)")->required();
   add_video_options(*c, f->video);
-  c->add_option("--still", f->video.still_path, "also write one frame of the video as a PNG (a page's still)");
-  c->add_option("--still-frame", f->video.still_frame, "which frame --still is (0: the start; -1: the middle)")
+  c->add_option("--still", f->video.still_path,
+                "also write frames of the video as a PNG (a page's still, or a strip through time)");
+  c->add_option("--still-frame", f->video.still_frames,
+                "which frames --still shows, left to right (0: the start; -1: the middle; e.g. 0 40 80: a strip)")
       ->check(CLI::Range(-1, 1 << 20))->capture_default_str();
   add_device_option(*c, f->device);
   c->callback([f] { run_render(*f); });

@@ -78,23 +78,33 @@ StepOutcome MujocoEnv::step(const float* action) {
   return finish_step(action);
 }
 
-StepOutcome MujocoEnv::step_controlled(PhysicsStepController& controller, float* mean_action) {
+void MujocoEnv::run_controlled(mjData* d, PhysicsStepController& controller, float* mean_action) const {
   const mjModel* m = model_->get();
-  mjData* d = data_.get();
   if (m->opt.integrator == mjINT_RK4)
     throw std::invalid_argument(model_->source() + ": a controller acting at the physics step needs the Euler or implicit integrator, not RK4");
-  ctrl_sum_.assign(m->nu, 0.0);
+  std::vector<double> ctrl_sum(m->nu, 0.0);
   for (int k = 0; k < options_.frame_skip; ++k) {
     mj_step1(m, d);
     controller.control(m, d);
     for (int a = 0; a < m->nu; ++a) {
       d->ctrl[a] = std::clamp(d->ctrl[a], act_spec_.low[a], act_spec_.high[a]);
-      ctrl_sum_[a] += d->ctrl[a];
+      ctrl_sum[a] += d->ctrl[a];
     }
     mj_step2(m, d);
   }
-  for (int a = 0; a < m->nu; ++a) mean_action[a] = static_cast<float>(ctrl_sum_[a] / options_.frame_skip);
+  for (int a = 0; a < m->nu; ++a) mean_action[a] = static_cast<float>(ctrl_sum[a] / options_.frame_skip);
+}
+
+StepOutcome MujocoEnv::step_controlled(PhysicsStepController& controller, float* mean_action) {
+  run_controlled(data_.get(), controller, mean_action);
   return finish_step(mean_action);
+}
+
+void MujocoEnv::lookahead_controlled(PhysicsStepController& controller, float* mean_action) const {
+  const mjModel* m = model_->get();
+  if (!lookahead_data_) lookahead_data_.reset(mj_makeData(m));
+  mj_copyData(lookahead_data_.get(), m, data_.get());
+  run_controlled(lookahead_data_.get(), controller, mean_action);
 }
 
 StepOutcome MujocoEnv::finish_step(const float* action) {

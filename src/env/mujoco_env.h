@@ -56,6 +56,12 @@ class MujocoEnv : public Env {
   // step()'s, of mean_action. Throws for a model on the RK4 integrator, which MuJoCo cannot split
   // around a control call (mj_step1/mj_step2 then integrate by Euler).
   StepOutcome step_controlled(PhysicsStepController& controller, float* mean_action);
+  // The mean ctrl `controller` would apply over the next control step from the current state,
+  // as step_controlled would record it, found by running it on a copy of the simulation: this
+  // environment stays where it is. The label of a demonstration recorded while noise perturbs
+  // what is executed (DART, Laskey et al. 2017): what the demonstrator means from the state the
+  // noise led to. The controller runs on, so pass a copy of the one that acts.
+  void lookahead_controlled(PhysicsStepController& controller, float* mean_action) const;
   void observe(float* out) const override;
   void features(double* out) const override;
   int steps_taken() const override { return steps_; }
@@ -91,9 +97,13 @@ class MujocoEnv : public Env {
   // step count, reward and termination.
   StepOutcome finish_step(const float* action);
 
+  // The physics steps of one control step on `d` with `controller` setting ctrl before each
+  // (clipped to the action box, as applied); their mean ctrl written to mean_action.
+  void run_controlled(mjData* d, PhysicsStepController& controller, float* mean_action) const;
+
   MjDataPtr data_;
+  mutable MjDataPtr lookahead_data_;  // lookahead_controlled's copy of the simulation, made once
   int steps_ = 0;
-  std::vector<double> ctrl_sum_;  // step_controlled's running sum of applied ctrl
 };
 
 }  // namespace vaegail

@@ -124,6 +124,14 @@ class AlternatingCtrlController : public PhysicsStepController {
   int calls_ = 0;
 };
 
+// Pulls the hinge towards 0 from its state: what it applies depends on where the step starts.
+class PdController : public PhysicsStepController {
+ public:
+  void control(const mjModel* m, mjData* d) override {
+    for (int a = 0; a < m->nu; ++a) d->ctrl[a] = -3.0 * d->qpos[0] - 0.5 * d->qvel[0];
+  }
+};
+
 std::shared_ptr<Env> pendulum_env(int frame_skip) {
   EnvRequest request;
   request.task = write_temp("vaegail_pendulum.xml", kPendulum);
@@ -152,6 +160,30 @@ TEST(MujocoEnvStepControlled, AlternatingValuesRecordTheirMeanAndOutOfRangeCtrlI
   mj.step_controlled(beyond, &mean);
   EXPECT_FLOAT_EQ(mean, 1.5f);
   EXPECT_DOUBLE_EQ(mj.data()->ctrl[0], 1.0);
+}
+
+TEST(MujocoEnvStepControlled, TheLookaheadIsTheMeanTheStepWillRecordAndLeavesTheSimulationWhereItWas) {
+  auto env = pendulum_env(5);
+  auto& mj = dynamic_cast<MujocoEnv&>(*env);
+  env->reset(3);
+  const float push = 1.5f;
+  env->step(&push);  // away from rest, moving
+  PdController pd;
+  const auto state = [&] {
+    const mjData* d = mj.data();
+    return std::vector<double>{d->qpos[0], d->qvel[0], d->time, d->ctrl[0]};
+  };
+  const auto before = state();
+  float ahead = 0, applied = 0;
+  mj.lookahead_controlled(pd, &ahead);
+  EXPECT_EQ(state(), before);
+  mj.step_controlled(pd, &applied);
+  EXPECT_EQ(ahead, applied);
+  EXPECT_NE(applied, 0.0f);
+  mj.lookahead_controlled(pd, &ahead);  // from the new state: another mean
+  EXPECT_NE(ahead, applied);
+  mj.step_controlled(pd, &applied);
+  EXPECT_EQ(ahead, applied);
 }
 
 TEST(MujocoEnvStepControlled, AConstantControllerStepsTheHumanoidExactlyAsStepWithTheHeldAction) {

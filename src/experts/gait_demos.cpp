@@ -60,6 +60,7 @@ std::vector<Episode> record_gait_demos(const std::vector<GaitDemonstrator>& styl
     };
     GaitEpisodeOptions episode;
     episode.seed = e.seed;
+    episode.action_noise = options.action_noise;
     run_gait_episode(*env, styles[k].parameters, episode,
                      [&](const HumanoidEnv& at, const float* mean_action, const StepOutcome* outcome) {
                        if (outcome) {  // after a control step (else: the reset)

@@ -8,7 +8,9 @@
 // start seeded by derive_seed(seed, i), for the environment's 334 control steps or until it
 // falls; it carries context [i mod K] ("style") and expert id "SET/STYLE" (the file's "set" and
 // "style", else its folder and name), so that later stages name the styles (`demos styles`).
-// Clean demonstrations: no pushes, no noise (the paper's controllers' demonstrations).
+// Clean demonstrations: no pushes, no noise (the paper's controllers' demonstrations). With
+// action_noise, the noise-perturbed set of DART instead (gait_episode.h): the states the noisy
+// execution visits, each with the clean controller's action from it.
 #pragma once
 
 #include <cstdint>
@@ -36,6 +38,7 @@ struct GaitDemoOptions {
   int episodes = 250;  // in all, over the styles
   std::uint64_t seed = 0;
   int threads = 1;     // episodes recorded at once
+  double action_noise = 0;  // GaitEpisodeOptions::action_noise
 };
 
 // The episodes in order, and the header of the humanoid's files (context names "style").

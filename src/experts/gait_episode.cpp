@@ -11,7 +11,8 @@
 namespace vaegail {
 
 namespace {
-constexpr std::uint64_t kGaitPushStream = 1;  // the pushes' stream of the episode's seed
+constexpr std::uint64_t kGaitPushStream = 1;   // the pushes' stream of the episode's seed
+constexpr std::uint64_t kGaitNoiseStream = 2;  // and the execution noise's
 constexpr double kGaitTransientSeconds = 1.0;  // the start left out of the means
 
 struct PelvisPush {
@@ -51,6 +52,27 @@ class PushedGait : public PhysicsStepController {
   std::vector<PelvisPush> pushes_;
 };
 
+// Another controller with Gaussian noise added to the ctrl it writes, redrawn by draw() (once per
+// control step): DART's execution noise.
+class NoisyControl : public PhysicsStepController {
+ public:
+  NoisyControl(PhysicsStepController& inner, int motors, double std, std::uint64_t seed)
+      : inner_(inner), noise_(motors), std_(std), rng_(seed) {}
+  void draw() {
+    for (double& n : noise_) n = std_ * rng_.normal();
+  }
+  void control(const mjModel* m, mjData* d) override {
+    inner_.control(m, d);
+    for (int a = 0; a < m->nu; ++a) d->ctrl[a] += noise_[a];
+  }
+
+ private:
+  PhysicsStepController& inner_;
+  std::vector<double> noise_;
+  double std_;
+  Rng rng_;
+};
+
 // Footholds' mean step length and width (in the frame of the heading at each landing) and
 // cadence, over the steps that land after the transient.
 void foothold_statistics(const std::vector<Foothold>& footholds, const GaitParameters& p, GaitEpisodeResult& r) {
@@ -87,16 +109,24 @@ GaitEpisodeResult run_gait_episode(HumanoidEnv& env, const GaitParameters& p, co
   env.features(episode.features.data());
   const double* com = env.data()->subtree_com + 3 * skeleton.root;
   const Vec2 com_start = {com[0], com[1]};
-  std::vector<float> action(env.act_dim());
+  std::vector<float> action(env.act_dim()), label(env.act_dim());
+  const bool noisy = o.action_noise > 0;
+  NoisyControl noisy_gait(pushed, env.act_dim(), o.action_noise, derive_seed(o.seed, kGaitNoiseStream));
   GaitEpisodeResult r;
   int measured = 0;
   if (observer) observer(env, nullptr, nullptr);
   for (int t = 0; t < steps && !r.fallen; ++t) {
-    const StepOutcome outcome = env.step_controlled(pushed, action.data());
+    if (noisy) {
+      GaitController clean = gait;  // its state machine and filters as they are now
+      env.lookahead_controlled(clean, label.data());
+      noisy_gait.draw();
+    }
+    const StepOutcome outcome = env.step_controlled(noisy ? static_cast<PhysicsStepController&>(noisy_gait) : pushed,
+                                                    action.data());
     episode.rewards.push_back(outcome.reward);
     episode.features.resize(episode.features.size() + n_features);
     env.features(episode.features.data() + episode.features.size() - n_features);
-    if (observer) observer(env, action.data(), &outcome);
+    if (observer) observer(env, noisy ? label.data() : action.data(), &outcome);
     ++r.control_steps;
     r.fallen = env.fallen();
     const double time = env.data()->time;

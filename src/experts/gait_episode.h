@@ -20,6 +20,11 @@ struct GaitEpisodeOptions {
   double push_force = 200.0;   // N
   double push_duration = 0.1;  // s
   double push_earliest = 2.0, push_latest = 8.0;  // s
+  // Std of Gaussian noise added to every motor's ctrl (in the action box's units), one draw per
+  // control step held over it, from the seed's own stream: the execution noise of DART (Laskey et
+  // al. 2017), which takes the demonstrator off its own path so that its demonstrations show how
+  // it comes back. The label leaves pushes out. 0: none.
+  double action_noise = 0;
 };
 
 // Means are over the control steps after the first second (the start's transient left out)
@@ -45,7 +50,9 @@ struct GaitEpisodeResult {
 };
 
 // Called once after the reset (mean_action and outcome null), then after each control step with
-// the step's mean action (float[56]) and outcome: what a recorder of the episode needs.
+// the step's mean action (float[56]) and outcome: what a recorder of the episode needs. Under
+// action_noise the action is the clean label instead: the mean ctrl the controller, noise-free,
+// would apply over the step from the state the step started in (MujocoEnv::lookahead_controlled).
 using GaitStepObserver =
     std::function<void(const HumanoidEnv& env, const float* mean_action, const StepOutcome* outcome)>;
 

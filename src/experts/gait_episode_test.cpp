@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace vaegail {
 namespace {
@@ -56,6 +57,50 @@ TEST(GaitEpisode, TheCommandsSetTheSpeedAndTheHeading) {
   EXPECT_LT(turned.final_heading_error, 0.1);
   EXPECT_NEAR(env.heading(), 0.4, 0.1);
   EXPECT_GT(turned.distance, 8.0);  // along the new heading
+}
+
+// DART's record: the noise moves the body off the clean walk, and each step's action is the
+// clean controller's from the state the step starts in, not what the noise made of it.
+TEST(GaitEpisode, UnderActionNoiseTheRecordIsTheCleanControllersActionAlongTheNoisyPath) {
+  HumanoidEnv env;
+  struct Record {
+    std::vector<std::vector<float>> actions, observations;
+    std::vector<std::vector<double>> applied;  // the ctrl of each step's last physics step
+  };
+  const auto walk = [&](double noise) {
+    GaitEpisodeOptions o;
+    o.seed = 21;
+    o.steps = 30;
+    o.action_noise = noise;
+    Record r;
+    run_gait_episode(env, GaitParameters{}, o, [&](const HumanoidEnv& at, const float* action, const StepOutcome*) {
+      r.observations.push_back(at.observation());
+      if (!action) return;
+      r.actions.emplace_back(action, action + at.act_dim());
+      r.applied.emplace_back(at.data()->ctrl, at.data()->ctrl + at.act_dim());
+    });
+    return r;
+  };
+  const Record clean = walk(0), noisy = walk(0.2), again = walk(0.2);
+  ASSERT_EQ(noisy.actions.size(), 30u);
+  EXPECT_EQ(noisy.actions, again.actions);  // the noise is drawn from the seed
+  EXPECT_EQ(noisy.actions[0], clean.actions[0]);  // the same start: the clean action bit for bit
+  EXPECT_EQ(noisy.observations[0], clean.observations[0]);
+  EXPECT_NE(noisy.observations[1], clean.observations[1]);  // then the noise moves the body
+  EXPECT_NE(noisy.actions[1], clean.actions[1]);            // and the labels follow the state
+  // What the motors got differs from the label by about the noise (0.2 x sqrt(2 / pi) = 0.16 on
+  // average, less where the box clips), while the clean walk applies its labels' neighbourhood.
+  double noisy_gap = 0, clean_gap = 0;
+  for (size_t t = 0; t < 30; ++t)
+    for (size_t a = 0; a < noisy.actions[t].size(); ++a) {
+      noisy_gap += std::abs(noisy.applied[t][a] - noisy.actions[t][a]) / (30.0 * noisy.actions[t].size());
+      clean_gap += std::abs(clean.applied[t][a] - clean.actions[t][a]) / (30.0 * clean.actions[t].size());
+    }
+  EXPECT_GT(noisy_gap, 0.1);
+  EXPECT_LT(noisy_gap, 0.2);
+  EXPECT_LT(clean_gap, 0.05);
+  for (const auto& action : noisy.actions)
+    for (float a : action) ASSERT_LE(std::abs(a), 1.0f);  // labels are in the action box
 }
 
 TEST(GaitEval, AStyleIsWalkedFromEachStartWithAndWithoutPushesAndItsMeansReported) {

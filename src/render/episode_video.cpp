@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "env/mujoco_env.h"
 #include "render/mp4_writer.h"
@@ -79,6 +82,48 @@ class Replay {
   std::vector<float> observation_;
 };
 
+// The still: the asked-for frames copied side by side as the video passes them, written once
+// the video is done. Frame indices are checked before any frame is drawn.
+class StillStrip {
+ public:
+  StillStrip(const VideoOptions& options, int frames, const FrameLayout& layout)
+      : path_(options.still_path), frame_width_(layout.width()), height_(layout.height()) {
+    if (path_.empty()) return;
+    if (options.still_frames.empty()) throw RenderError(path_ + ": no frame asked for");
+    for (int f : options.still_frames) {
+      const int frame = f < 0 ? frames / 2 : f;
+      if (frame >= frames)
+        throw RenderError(path_ + ": frame " + std::to_string(frame) + " of a video of " + std::to_string(frames) +
+                          " frames");
+      frames_.push_back(frame);
+    }
+    rgb_.resize(static_cast<size_t>(width()) * height_ * 3);
+  }
+
+  // Copies the frame `f` (rgb, top row first) into every place of the strip that asks for it.
+  void take(int f, const std::uint8_t* rgb) {
+    const size_t row_bytes = static_cast<size_t>(frame_width_) * 3;
+    for (size_t k = 0; k < frames_.size(); ++k) {
+      if (frames_[k] != f) continue;
+      for (int y = 0; y < height_; ++y)
+        std::copy_n(rgb + y * row_bytes, row_bytes,
+                    rgb_.data() + (static_cast<size_t>(y) * width() + k * frame_width_) * 3);
+    }
+  }
+
+  void write() const {
+    if (!path_.empty()) write_png(path_, width(), height_, rgb_.data());
+  }
+
+ private:
+  int width() const { return static_cast<int>(frames_.size()) * frame_width_; }
+
+  std::string path_;
+  int frame_width_, height_;
+  std::vector<int> frames_;
+  std::vector<std::uint8_t> rgb_;
+};
+
 }  // namespace
 
 int video_frames(const std::vector<std::vector<Clip>>& grid) {
@@ -107,10 +152,7 @@ std::vector<ReplayReport> write_episode_video(const Env& prototype, const std::v
   Mp4Writer video(path, {layout.width(), layout.height(), video_fps(prototype, options)});
 
   const int frames = video_frames(grid);
-  const int still = options.still_frame < 0 ? frames / 2 : options.still_frame;
-  if (!options.still_path.empty() && still >= frames)
-    throw RenderError(options.still_path + ": frame " + std::to_string(still) + " of a video of " +
-                      std::to_string(frames) + " frames");
+  StillStrip still(options, frames, layout);
   for (int f = 0; f < frames; ++f) {
     for (int r = 0; r < layout.rows; ++r)
       for (int c = 0; c < layout.cols; ++c) {
@@ -123,11 +165,11 @@ std::vector<ReplayReport> write_episode_video(const Env& prototype, const std::v
         renderer.draw(r, c, replay.data(), replay.caption());
       }
     video.write(renderer.read().data());
-    if (f == still && !options.still_path.empty())
-      write_png(options.still_path, layout.width(), layout.height(), renderer.read().data());
+    still.take(f, renderer.read().data());
     if (progress) progress->advance();
   }
   video.finish();
+  still.write();
 
   std::vector<ReplayReport> reports;
   for (const auto& row : replays)

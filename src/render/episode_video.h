@@ -44,10 +44,12 @@ struct VideoOptions {
   int tile_width = 320, tile_height = 240;  // pixels per tile, even
   int fps = 0;  // 0: real time, 1 / the control step (rounded): 40 for the walker
   CameraOptions camera;
-  // Also one frame as a PNG (render/png_writer.h), the still a page shows: frame `still_frame`
-  // (0: the initial states), or the video's middle one when negative. Empty path: none.
+  // Also a PNG (render/png_writer.h), the still a page shows: the frames `still_frames` side by
+  // side, left to right in that order (one frame, or a strip of a motion through time), each
+  // the whole grid; 0 is the initial states, a negative index the video's middle frame. Empty
+  // path: none.
   std::string still_path;
-  int still_frame = -1;
+  std::vector<int> still_frames = {-1};
 };
 
 struct ReplayReport {

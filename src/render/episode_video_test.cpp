@@ -140,7 +140,7 @@ TEST_F(EpisodeVideo, AStillIsTheFrameAskedForAsAPng) {
   options.tile_height = 64;
   const auto still_at = [&](int frame, const std::string& name) {
     options.still_path = (dir / name).string();
-    options.still_frame = frame;
+    options.still_frames = {frame};
     write_episode_video(*env, grid, options, (dir / "v.mp4").string());
     return decode_png(options.still_path);
   };
@@ -150,8 +150,28 @@ TEST_F(EpisodeVideo, AStillIsTheFrameAskedForAsAPng) {
   EXPECT_EQ(middle.rgb.size(), 2u * 96 * 64 * 3);
   EXPECT_EQ(middle.rgb, sixth.rgb);  // 13 frames: the middle one is frame 6
   EXPECT_NE(first.rgb, sixth.rgb);   // the bodies moved
-  options.still_frame = 13;
+  options.still_frames = {13};
   EXPECT_THROW(write_episode_video(*env, grid, options, (dir / "v.mp4").string()), RenderError);
+
+  // A strip: the frames side by side in the order asked, each the whole grid.
+  options.still_path = (dir / "strip.png").string();
+  options.still_frames = {6, 0, 6};
+  write_episode_video(*env, grid, options, (dir / "v.mp4").string());
+  const Image strip = decode_png(options.still_path);
+  ASSERT_EQ(strip.width, 3 * middle.width);
+  ASSERT_EQ(strip.height, middle.height);
+  const auto part = [&](int k) {
+    std::vector<std::uint8_t> rgb;
+    const size_t row = static_cast<size_t>(middle.width) * 3;
+    for (int y = 0; y < strip.height; ++y) {
+      const auto start = strip.rgb.begin() + static_cast<std::ptrdiff_t>(y * 3 * row + k * row);
+      rgb.insert(rgb.end(), start, start + static_cast<std::ptrdiff_t>(row));
+    }
+    return rgb;
+  };
+  EXPECT_EQ(part(0), sixth.rgb);
+  EXPECT_EQ(part(1), first.rgb);
+  EXPECT_EQ(part(2), sixth.rgb);
 }
 
 TEST_F(EpisodeVideo, RealTimeIsOneFramePerControlStep) {
