@@ -25,7 +25,8 @@
 #          effectors), 2 ranks, into checkpoints/humanoid/diverse_gail; GAIL_ITERATIONS (default 2000) in total,
 #          resumed by the same command; every 200 iterations' checkpoint kept in snapshots/it_N (not committed)
 #   course  `eval humanoid` of each snapshot on 5 training demonstrations a style: falls and style kept per style
-#          along training, into results/humanoid/course/
+#          along training; the discriminator's accuracies, the reward and the episode length by iteration; into
+#          results/humanoid/course/
 #   imitation  `eval humanoid` (Figure 5 right): falls and style kept, VAE policy against fine-tuned, on the
 #          training demonstrations and one-shot on the evaluation ones, into results/humanoid/imitation/
 #   figure5  Figure 5 left: a demonstration of every style beside its VAE and fine-tuned imitations (`render`), the
@@ -119,9 +120,15 @@ gail() {
 }
 
 # Whether the styles survive fine-tuning (the walker lost two of its four speeds): `eval humanoid` on each kept
-# snapshot, 5 training demonstrations a style, into results/humanoid/course/it_N/, and their per-style table.
+# snapshot, 5 training demonstrations a style, into results/humanoid/course/it_N/; and the run's discriminator
+# accuracies, reward and episode length by iteration.
 course() {
   local snap
+  [ "$dry_run" = 1 ] || mkdir -p results/humanoid/course
+  run $v plot curves --csv $gail_run/metrics.csv --x iteration --y gail_reward,disc_policy_accuracy,disc_demo_accuracy \
+    --out results/humanoid/course/discriminator.png
+  run $v plot curves --csv $gail_run/metrics.csv --x iteration --y episode_length \
+    --out results/humanoid/course/episode_length.png
   for snap in $gail_run/snapshots/it_*; do
     [ -e "$snap/checkpoints/latest.pt" ] || continue
     run $v eval humanoid --demos data/humanoid/train.h5 --vae $vae_run --gail "$snap" --episodes-per-style 5 \
