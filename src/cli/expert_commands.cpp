@@ -288,13 +288,10 @@ void run_eval(const EvalFlags& f) {
   for (const auto& d : dirs) {
     results.push_back(evaluate_expert(load_expert(d), f.eval));
     nlohmann::json targets = nlohmann::json::array();
-    for (const auto& t : results.back().targets) {
-      nlohmann::json row = {{"target", t.target}, {"label", t.label}, {"target_speed", t.target_speed},
-                            {"episodes", t.episodes}, {"mean_speed", t.mean_speed},
-                            {"speed_error", t.speed_error}, {"fall_rate", t.fall_rate}};
-      for (size_t k = 0; k < t.signature.size(); ++k) row["signature"][kGaitStatistics[k]] = t.signature[k];
-      targets.push_back(row);
-    }
+    for (const auto& t : results.back().targets)
+      targets.push_back({{"target", t.target}, {"label", t.label}, {"target_speed", t.target_speed},
+                         {"episodes", t.episodes}, {"mean_speed", t.mean_speed}, {"speed_error", t.speed_error},
+                         {"fall_rate", t.fall_rate}});
     report.push_back({{"id", results.back().id}, {"passes", results.back().passes()}, {"targets", targets}});
     progress.advance();
   }
@@ -432,7 +429,7 @@ void add_expert_commands(CLI::App& app) {
 
   auto t = std::make_shared<ExpertTrainFlags>();
   CLI::App* train = experts->add_subcommand("train", "train target-speed experts with PPO (resumable)");
-  train->add_option("--task", t->task, "walker (PPO, target speeds), humanoid (PPO, styles; needs --config) or arm (DDPG, random reach targets)")
+  train->add_option("--task", t->task, "walker (PPO, target speeds), humanoid (PPO on its style-free reward, a --config grid of style labels) or arm (DDPG, random reach targets)")
       ->check(CLI::IsMember({"walker", "humanoid", "arm"}))->capture_default_str();
   train->add_option("--out-dir", t->out_dir, "one run directory per expert goes here")->capture_default_str();
   train->add_option("--grid", t->grid, "paper: 72 experts (6 speed groups x 4 log-std x 3 seeds); small: 12")

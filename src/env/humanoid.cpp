@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "env/embedded_models.h"
+#include "env/reward_terms.h"
 
 namespace vaegail {
 
@@ -19,6 +21,13 @@ MujocoEnvOptions humanoid_env_options(const HumanoidOptions& options) {
   o.episode_length = options.episode_length;
   o.reset_noise = 0.02;  // the base's seeded perturbation of every hinge around the rest pose
   return o;
+}
+
+// 1 / (1 + ((x - target) / scale)^2): 1 on target, 1/2 at a miss of `scale`, and a slope left far
+// off, where a Gaussian's is gone.
+double credit(double x, double target, double scale) {
+  const double miss = (x - target) / scale;
+  return 1.0 / (1.0 + miss * miss);
 }
 }  // namespace
 
@@ -54,28 +63,6 @@ HumanoidEnv::HumanoidEnv(std::shared_ptr<const MujocoModel> model, HumanoidOptio
   feature_names_.insert(feature_names_.end(), effector_names.begin(), effector_names.end());
   context_names_ = {"style"};
   context_ = {0.0};
-  read_styles();
-}
-
-void HumanoidEnv::read_styles() {
-  const mjModel* m = model();
-  const std::string prefix = "style_";
-  for (int n = 0; n < m->nnumeric; ++n) {
-    const std::string name = mj_id2name(m, mjOBJ_NUMERIC, n);
-    if (name.rfind(prefix, 0) != 0) continue;
-    if (m->numeric_size[n] != kStyleTerms)
-      throw std::runtime_error(model_->source() + ": " + name + " needs " + std::to_string(kStyleTerms) + " values");
-    StyleTerms values;
-    std::copy_n(m->numeric_data + m->numeric_adr[n], kStyleTerms, values.begin());
-    if (name == "style_scales") {
-      style_scales_ = values;
-      continue;
-    }
-    style_names_.push_back(name.substr(prefix.size()));
-    style_targets_.push_back(values);
-  }
-  if (style_targets_.empty() || std::any_of(style_scales_.begin(), style_scales_.end(), [](double s) { return !(s > 0); }))
-    throw std::runtime_error(model_->source() + ": the humanoid needs style_scales (all > 0) and at least one style");
 }
 
 std::array<double, 3> HumanoidEnv::to_root_frame(const double* world) const {
@@ -180,30 +167,20 @@ StyleTerms HumanoidEnv::style_measures() const {
   return m;
 }
 
-double HumanoidEnv::style_reward(const StyleTerms& target, const StyleTerms& scale, const StyleTerms& measured,
-                                 double up_z, const float* action, int act_dim) {
-  auto credit = [&](int k) {
-    const double miss = (measured[k] - target[k]) / scale[k];
-    return 1.0 / (1.0 + miss * miss);
-  };
-  double posture = 0.0;
-  for (int k = kForwardSpeed + 1; k < kStyleTerms; ++k) posture += credit(k) / (kStyleTerms - 1);
+double HumanoidEnv::upright_forward_reward(double forward_speed, double up_z, const float* action, int act_dim) {
   const double upright = 0.5 * (1.0 + up_z);
-  double effort = 0.0;
-  for (int a = 0; a < act_dim; ++a) {
-    const double u = std::clamp(static_cast<double>(action[a]), -1.0, 1.0);
-    effort += u * u;
-  }
-  const double style = credit(kForwardSpeed) * (kPostureFloor + (1.0 - kPostureFloor) * posture);
-  return upright * (kAliveWeight + (1.0 - kAliveWeight) * style) - 0.05 * effort / act_dim;
+  const double moving = credit(forward_speed, kTargetSpeed, kSpeedScale);
+  return upright * (kAliveWeight + (1.0 - kAliveWeight) * moving) - effort_charge(0.05, action, act_dim);
 }
 
+// The label is only a name: neither the dynamics nor the reward reads it. One that is no index
+// (negative, fractional, not finite) can only come from a corrupt or foreign file, refused where it
+// first meets the environment; MujocoEnv refuses a context of another size.
 void HumanoidEnv::set_context(const std::vector<double>& context) {
-  if (context.size() == 1) {
-    const double style = context[0];
-    if (!(style >= 0 && style < static_cast<double>(style_names_.size())) || style != std::floor(style))
-      throw std::invalid_argument("humanoid: style " + std::to_string(style) + " is not an index of its " +
-                                  std::to_string(style_names_.size()) + " styles");
+  if (context.size() == 1 && !(std::isfinite(context[0]) && context[0] >= 0 && context[0] == std::floor(context[0]))) {
+    std::ostringstream message;
+    message << "humanoid: style " << context[0] << " is no style label (a non-negative integer)";
+    throw std::invalid_argument(message.str());
   }
   MujocoEnv::set_context(context);
 }
@@ -215,8 +192,7 @@ std::vector<int> HumanoidEnv::discriminator_observation() const {
 }
 
 double HumanoidEnv::reward(const float* action) const {
-  return style_reward(style_targets_[static_cast<int>(context_[0])], style_scales_, style_measures(),
-                      up_in_root()[2], action, kHinges);
+  return upright_forward_reward(forward_speed(), up_in_root()[2], action, kHinges);
 }
 
 bool HumanoidEnv::has_terminated() const { return humanoid_options_.terminate_on_fall && fallen(); }

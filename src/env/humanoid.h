@@ -1,8 +1,11 @@
 // The 62-DoF CMU humanoid task (models/humanoid_cmu.xml; the paper's section 4.3): a free root
 // and 56 hinges, 56 torque motors, control step 0.03 s, 334-step episodes (10 s), every episode
 // from the standing rest pose with each hinge's angle and velocity perturbed by up to +- 0.02
-// (rad, rad/s; seeded). Context: the movement style, an index into the styles of the model
-// (style_names(); set_context throws on an index outside them), which picks the reward.
+// (rad, rad/s; seeded). Context: `style`, one number, the label of a demonstration's style (the
+// gait demonstrations give each episode its style's index within its set: six training styles,
+// five evaluation ones). Any non-negative integer is a label; it changes neither the dynamics nor
+// the reward, so an imitation runs in its demonstration's context whatever the label. set_context
+// refuses a negative, fractional or non-finite label and a context of another size.
 //
 // Observation layout (137 floats):
 //   0..55     joint angles      the 56 hinges in model order, lfemurrz ... rthumbrx (rad)
@@ -23,31 +26,27 @@
 // fallen is 1 when the head is below 0.9 m, the root below 0.55 m, or a geom other than the
 // feet and toes touches the floor (contacts as found at the last physics step).
 //
-// Reward: each style is a target for eight measures of the current state (style_measures(),
-// StyleTerm order), read from the model's <custom> numerics style_NAME, with per-measure
-// tolerances s from style_scales (models/humanoid_cmu.xml lists them; docs/humanoid_controllers.md
-// says what each style is meant to look like):
-//   upright * (0.2 + 0.8 * speed * (0.4 + 0.6 * posture)) - 0.05 * mean(clip(a)^2)
-//   credit(x, target, s) = 1 / (1 + ((x - target) / s)^2)    1 on target, 1/2 at a miss of s
-//   speed   = credit of forward_speed
-//   posture = mean credit of the seven others
+// Reward, the same for every style label: being upright and moving forward, less the effort,
+//   upright * (0.2 + 0.8 * credit(forward_speed, 1.0, 0.5)) - 0.05 * mean(clip(a, -1, 1)^2)
 //   upright = (1 + up_z) / 2
-// Speed multiplies posture so that a body standing in the style's posture earns little more
-// than the 0.2 for being up (0.2 + 0.8 * 0.148 for the 1.2 m/s walk): only moving pays. The
-// 0.4 floor keeps posture's gradient alive while the speed is still far off. Sway and turn
-// are magnitudes, so a policy may sway or turn either way (the styles need no clock). Being up
-// pays on its own, as the walker's does, so that falling early never beats trying.
+//   credit(x, target, s) = 1 / (1 + ((x - target) / s)^2)    1 on target, 1/2 at a miss of s
+// about 1 a step walking upright at 1 m/s, 0.36 standing still, 0.18 lying still: being up pays
+// at any speed, so that falling early never beats trying, as the walker's does. Simple on
+// purpose: the imitation never uses it (diverse GAIL learns from its discriminator and logs this
+// as env_return, a sanity figure of whether the imitations stay up and walk), and the styles are
+// the gait controllers' (experts/, docs/humanoid_controllers.md); PPO on the task (`experts train
+// --task humanoid`) gets a walking reward from it, no style.
 #pragma once
 
 #include <array>
-#include <string>
 #include <vector>
 
 #include "env/mujoco_env.h"
 
 namespace vaegail {
 
-// The measures a style's reward scores, in the order of the model's style numerics.
+// Measures of a style in the current state: averaged over a gait controller's episode
+// (experts/gait_episode.h), they are what its tuner scores a style's targets against.
 enum StyleTerm { kForwardSpeed, kSwaySpeed, kTurnRate, kRootHeight, kHeadForward, kHandHeight, kHandSpread,
                  kFootSpread, kStyleTerms };
 using StyleTerms = std::array<double, kStyleTerms>;
@@ -62,8 +61,9 @@ class HumanoidEnv : public MujocoEnv {
   static constexpr int kHinges = 56;
   static constexpr double kFallHeadHeight = 0.9;
   static constexpr double kFallRootHeight = 0.55;
-  static constexpr double kAliveWeight = 0.2;
-  static constexpr double kPostureFloor = 0.4;
+  static constexpr double kAliveWeight = 0.2;  // what being upright pays at any speed
+  static constexpr double kTargetSpeed = 1.0;  // m/s: the forward speed the reward pays in full
+  static constexpr double kSpeedScale = 0.5;   // m/s: the miss of it at which its credit halves
   // The bodies whose positions the observation and the features carry, in their order.
   static constexpr std::array<const char*, 5> kEndEffectors = {"lhand", "rhand", "lfoot", "rfoot", "head"};
 
@@ -89,9 +89,6 @@ class HumanoidEnv : public MujocoEnv {
   // The centre of mass's speed across the heading (m/s, positive towards the body's left).
   double lateral_speed() const;
   StyleTerms style_measures() const;
-  const std::vector<std::string>& style_names() const { return style_names_; }
-  const StyleTerms& style_target(int style) const { return style_targets_.at(style); }
-  const StyleTerms& style_scales() const { return style_scales_; }
   void set_context(const std::vector<double>& context) override;
   // Observation 112..136: root height, up vector, root linear and angular velocity and the 15
   // end-effector coordinates; not the joint angles and velocities. The paper's discriminator sees
@@ -103,17 +100,14 @@ class HumanoidEnv : public MujocoEnv {
   // from the controller's by small joint details and saturates, leaving a reward that says
   // little about the style.
   std::vector<int> discriminator_observation() const override;
-  // The reward of a style's targets for measured terms, the pelvis's up_z and an action.
-  static double style_reward(const StyleTerms& target, const StyleTerms& scale, const StyleTerms& measured,
-                             double up_z, const float* action, int act_dim);
+  // The reward (see above) for a forward speed, the pelvis's up_z and an action.
+  static double upright_forward_reward(double forward_speed, double up_z, const float* action, int act_dim);
 
  protected:
   double reward(const float* action) const override;
   bool has_terminated() const override;
 
  private:
-  // The styles and tolerances of the model's <custom> numerics (throws if they are malformed).
-  void read_styles();
   // Express a world-frame vector in the root frame.
   std::array<double, 3> to_root_frame(const double* world) const;
 
@@ -121,9 +115,6 @@ class HumanoidEnv : public MujocoEnv {
   int root_ = 0, head_ = 0, floor_ = 0;
   std::array<int, kEndEffectors.size()> end_effectors_{};
   std::array<int, 4> feet_{};  // lfoot, ltoes, rfoot, rtoes: the bodies that may touch the floor
-  std::vector<std::string> style_names_;
-  std::vector<StyleTerms> style_targets_;
-  StyleTerms style_scales_{};
 };
 
 }  // namespace vaegail

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "env/registry.h"
@@ -127,7 +129,8 @@ TEST(Humanoid, StandsInItsRestPoseOnItsFeetAboutOnePointSevenMetresTall) {
   EXPECT_GT(d->ncon, 0);
   EXPECT_FALSE(env.off_feet_contact());
   EXPECT_FALSE(env.fallen());
-  // The rest values the model's style comment quotes, up to the reset's +- 0.02 rad per hinge.
+  // The style measures of standing straight with the arms hanging, up to the reset's +- 0.02 rad
+  // per hinge: where the gait styles' tuned targets start from.
   const StyleTerms rest = env.style_measures();
   EXPECT_NEAR(rest[kRootHeight], 0.951, 0.03);
   EXPECT_NEAR(rest[kHeadForward], 0.0, 0.03);
@@ -361,88 +364,75 @@ TEST(Humanoid, TheDiscriminatorSeesTheRootAndTheEndEffectorsNotTheJoints) {
   EXPECT_TRUE(make_env(EnvRequest{"walker"})->discriminator_observation().empty());  // the walker's: all of it
 }
 
-TEST(Humanoid, StyleRewardMatchesHandComputedValues) {
-  const std::vector<float> zero(56, 0.f), full(56, 3.f);  // clipped to 1
-  HumanoidEnv env;
-  const StyleTerms& walk = env.style_target(0);
-  const StyleTerms& scale = env.style_scales();
-  // On every target, upright, no effort: full credit.
-  EXPECT_DOUBLE_EQ(HumanoidEnv::style_reward(walk, scale, walk, 1.0, zero.data(), 56), 1.0);
-  // Standing still in the walk's posture: the alive weight and 1 / (1 + (1.2 / 0.5)^2) of the rest.
-  StyleTerms still = walk;
-  still[kForwardSpeed] = 0.0;
-  EXPECT_NEAR(HumanoidEnv::style_reward(walk, scale, still, 1.0, zero.data(), 56), 0.2 + 0.8 / (1 + 5.76), 1e-12);
-  // Moving at the target with one posture measure off by its tolerance: that term's credit halves,
-  // posture = (6 + 1/2) / 7, scaled above the 0.4 floor.
-  for (int k = kSwaySpeed; k < kStyleTerms; ++k) {
-    StyleTerms off = walk;
-    off[k] += scale[k];
-    EXPECT_NEAR(HumanoidEnv::style_reward(walk, scale, off, 1.0, zero.data(), 56),
-                0.2 + 0.8 * (0.4 + 0.6 * 6.5 / 7), 1e-12) << k;
-  }
-  // Every posture measure far off: the floor alone, 0.2 + 0.8 * 0.4 in the limit.
-  StyleTerms wrong = walk;
-  for (int k = kSwaySpeed; k < kStyleTerms; ++k) wrong[k] += 1e6 * scale[k];
-  EXPECT_NEAR(HumanoidEnv::style_reward(walk, scale, wrong, 1.0, zero.data(), 56), 0.52, 1e-9);
-  // Half uprightness lying on the side, and the full control cost.
-  EXPECT_NEAR(HumanoidEnv::style_reward(walk, scale, walk, 0.0, zero.data(), 56), 0.5, 1e-12);
-  EXPECT_NEAR(HumanoidEnv::style_reward(walk, scale, walk, 1.0, full.data(), 56), 0.95, 1e-12);
-}
-
-// The gait signatures the docs give each style, as relations between their targets.
-TEST(Humanoid, StylesHaveTheirDocumentedSignatures) {
-  HumanoidEnv env;
-  const std::vector<std::string> names = {"walk", "old", "fast", "drunk", "chicken", "crouch", "swagger", "strong"};
-  ASSERT_EQ(env.style_names(), names);
-  auto t = [&](const char* style, StyleTerm k) {
-    const int i = static_cast<int>(std::find(names.begin(), names.end(), style) - names.begin());
-    return env.style_target(i)[k];
+// The header's formula, by hand: upright * (0.2 + 0.8 * credit(speed, 1, 0.5)) - 0.05 * effort.
+TEST(Humanoid, TheRewardPaysForBeingUprightAndMovingForward) {
+  const std::vector<float> zero(56, 0.f), full(56, 3.f), half(56, -0.5f);  // full: clipped to 1
+  auto reward = [&](double speed, double up_z, const std::vector<float>& a) {
+    return HumanoidEnv::upright_forward_reward(speed, up_z, a.data(), 56);
   };
-  EXPECT_DOUBLE_EQ(t("walk", kForwardSpeed), 1.2);
-  for (const char* slow : {"old", "drunk", "chicken", "crouch"}) EXPECT_LT(t(slow, kForwardSpeed), 1.0) << slow;
-  EXPECT_GT(t("fast", kForwardSpeed), 1.5);
-  EXPECT_LT(t("old", kRootHeight), t("walk", kRootHeight));
-  EXPECT_GT(t("old", kHeadForward), 0.1);                    // hunched
-  EXPECT_LT(t("crouch", kRootHeight), t("old", kRootHeight));  // the lowest
-  EXPECT_GT(t("drunk", kSwaySpeed), 0.2);
-  EXPECT_GT(t("drunk", kTurnRate), 0.3);                     // a wandering heading
-  EXPECT_GT(t("drunk", kFootSpread), t("walk", kFootSpread));
-  for (const auto& other : names)
-    if (other != "chicken")
-      EXPECT_GT(t("chicken", kHandHeight), t(other.c_str(), kHandHeight)) << other;  // elbows up and out
-  EXPECT_GT(t("swagger", kSwaySpeed), 0.1);                  // hip sway
-  EXPECT_LT(t("swagger", kFootSpread), t("walk", kFootSpread));  // steps on one line
-  for (const auto& other : names)
-    if (other != "strong") {
-      EXPECT_GT(t("strong", kHandSpread), t(other.c_str(), kHandSpread)) << other;  // arms away from the body
-      EXPECT_GE(t("strong", kFootSpread), t(other.c_str(), kFootSpread)) << other;  // wide stance
-    }
-  // Each style's reward peaks on its own targets and pays less for any other style's.
-  const std::vector<float> zero(56, 0.f);
-  for (std::size_t a = 0; a < names.size(); ++a)
-    for (std::size_t b = 0; b < names.size(); ++b)
-      if (a != b)
-        EXPECT_LT(HumanoidEnv::style_reward(env.style_target(a), env.style_scales(), env.style_target(b), 1.0,
-                                            zero.data(), 56), 0.95) << names[a] << " on " << names[b];
+  EXPECT_DOUBLE_EQ(reward(1.0, 1.0, zero), 1.0);                    // upright at 1 m/s: all of it
+  EXPECT_NEAR(reward(0.0, 1.0, zero), 0.2 + 0.8 / (1 + 4), 1e-12);  // standing still: 0.36
+  EXPECT_NEAR(reward(1.5, 1.0, zero), 0.2 + 0.8 / 2, 1e-12);        // off by the 0.5 m/s scale
+  EXPECT_NEAR(reward(0.5, 1.0, zero), 0.2 + 0.8 / 2, 1e-12);        // either way
+  EXPECT_NEAR(reward(-1.0, 1.0, zero), 0.2 + 0.8 / (1 + 16), 1e-12);
+  EXPECT_NEAR(reward(1.0, 0.0, zero), 0.5, 1e-12);  // lying on the side: half
+  EXPECT_NEAR(reward(1.0, -1.0, zero), 0.0, 1e-12);  // upside down: nothing
+  EXPECT_NEAR(reward(1.0, 1.0, full), 0.95, 1e-12);
+  EXPECT_NEAR(reward(1.0, 1.0, half), 1.0 - 0.05 * 0.25, 1e-12);
 }
 
-TEST(Humanoid, TheStyleContextPicksTheReward) {
+TEST(Humanoid, StandingStillUprightEarnsTheRewardOfSpeedZero) {
   HumanoidEnv env;
+  env.reset(7);
   const std::vector<float> zero(56, 0.f);
-  std::vector<double> rewards;
-  for (int style : {0, 2}) {
-    env.set_context({static_cast<double>(style)});
-    env.reset(7);
-    const StepOutcome out = env.step(zero.data());
-    EXPECT_DOUBLE_EQ(out.reward, HumanoidEnv::style_reward(env.style_target(style), env.style_scales(),
-                                                           env.style_measures(), env.up_in_root()[2], zero.data(), 56));
-    rewards.push_back(out.reward);
+  const StepOutcome out = env.step(zero.data());
+  const double up_z = env.up_in_root()[2], speed = env.forward_speed();
+  ASSERT_GT(up_z, 0.999);
+  ASSERT_LT(std::abs(speed), 0.05);
+  const double miss = (speed - 1.0) / 0.5;
+  EXPECT_NEAR(out.reward, (1 + up_z) / 2 * (0.2 + 0.8 / (1 + miss * miss)), 1e-12);
+  EXPECT_NEAR(out.reward, 0.36, 0.015);
+}
+
+// The style is a label: any non-negative integer, and the episode is the same bit for bit.
+TEST(Humanoid, TheStyleLabelChangesNeitherTheDynamicsNorTheReward) {
+  HumanoidEnv zero, ten;
+  ten.set_context({10.0});
+  EXPECT_EQ(ten.clone()->context(), std::vector<double>{10.0});
+  zero.reset(9);
+  ten.reset(9);
+  ASSERT_EQ(zero.observation(), ten.observation());
+  for (int t = 0; t < 60; ++t) {
+    const StepOutcome a = zero.step(hinge_wobble(t).data());
+    const StepOutcome b = ten.step(hinge_wobble(t).data());
+    ASSERT_EQ(a.reward, b.reward) << "step " << t;
+    ASSERT_EQ(a.terminated, b.terminated) << "step " << t;
+    ASSERT_EQ(zero.observation(), ten.observation()) << "step " << t;
   }
-  // At rest the 1.2 m/s walk pays more than the 2 m/s fast style.
-  EXPECT_GT(rewards[0], rewards[1]);
-  EXPECT_THROW(env.set_context({8.0}), std::invalid_argument);
-  EXPECT_THROW(env.set_context({-1.0}), std::invalid_argument);
-  EXPECT_THROW(env.set_context({1.5}), std::invalid_argument);
+  EXPECT_NO_THROW(ten.set_context({123456.0}));
+}
+
+TEST(Humanoid, RefusesAContextThatIsNoStyleLabelInOneLine) {
+  HumanoidEnv env;
+  env.set_context({4.0});
+  const std::vector<std::pair<std::vector<double>, std::string>> malformed = {
+      {{-1.0}, "style -1 is no style label"},
+      {{0.5}, "style 0.5 is no style label"},
+      {{std::nan("")}, "style nan is no style label"},
+      {{std::numeric_limits<double>::infinity()}, "style inf is no style label"},
+      {{1.0, 2.0}, "context has 2 values, expected 1"},
+      {{}, "context has 0 values, expected 1"}};
+  for (const auto& [context, needle] : malformed) {
+    try {
+      env.set_context(context);
+      ADD_FAILURE() << needle << ": accepted";
+    } catch (const std::invalid_argument& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(needle), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    EXPECT_EQ(env.context(), std::vector<double>{4.0});  // a refused context leaves the last one
+  }
 }
 
 TEST(Humanoid, IsABuiltInTaskWithAStyleContext) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "env/embedded_models.h"
+#include "env/reward_terms.h"
 
 namespace vaegail {
 
@@ -80,14 +81,9 @@ double WalkerEnv::task_reward(double com_speed, double target_speed, double tors
   const double dv = std::abs(com_speed - target_speed);
   const double move = 0.6 * std::max(0.0, 1.0 - dv / std::max(1.0, std::abs(target_speed))) +
                       0.4 * std::exp(-2.0 * dv * dv);
-  double effort = 0.0;
-  for (int a = 0; a < act_dim; ++a) {
-    const double u = std::clamp(static_cast<double>(action[a]), -1.0, 1.0);
-    effort += u * u;
-  }
   // Being up pays on its own: otherwise a learner far from its target speed earns less than the
   // effort it spends and learns to fall at once, ending the episode.
-  return stand * upright * (kAliveWeight + (1.0 - kAliveWeight) * move) - 0.05 * effort / act_dim;
+  return stand * upright * (kAliveWeight + (1.0 - kAliveWeight) * move) - effort_charge(0.05, action, act_dim);
 }
 
 double WalkerEnv::reward(const float* action) const {

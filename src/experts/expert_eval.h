@@ -1,8 +1,8 @@
 // `vaegail experts eval`: does an expert move at its target speeds without falling?
 // Mean achieved speed per target over episodes (each episode's mean centre-of-mass speed),
 // its distance to the target speed, and the share of episodes that end in a fall. A humanoid
-// expert's targets are styles: the target speed is the style's, and each style also reports
-// the mean gait signature of its episodes (experts/humanoid_gait.h).
+// expert is refused: its context is a style label, no speed, and the humanoid's demonstrators are
+// gait controllers, graded by `experts eval --task humanoid --styles` (experts/gait_eval.h).
 #pragma once
 
 #include <cstdint>
@@ -14,14 +14,13 @@
 namespace vaegail {
 
 struct TargetResult {
-  double target = 0;        // the context: a target speed, or a style index
-  std::string label;        // the target as printed: "1.00", or the style's name
-  double target_speed = 0;  // the walker's target, the style's forward speed
+  double target = 0;        // the context: a target speed
+  std::string label;        // the target as printed: "1.00"
+  double target_speed = 0;  // the target (m/s), under its own name in the JSON report
   int episodes = 0;
   double mean_speed = 0;
   double speed_error = 0;  // |mean_speed - target_speed|
   double fall_rate = 0;
-  std::vector<double> signature;  // humanoid: mean GaitSignature (kGaitStatistics order); else empty
 };
 
 struct ExpertEvaluation {

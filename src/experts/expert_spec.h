@@ -1,8 +1,8 @@
-// Which experts to train: the paper's walker grid (appendix "Walker"), smaller ones, and the
-// humanoid's style-conditioned controllers.
+// Which experts to train: the paper's walker grid (appendix "Walker"), smaller ones, and grids
+// on any other registered task (the humanoid's, whose reward ignores its style label).
 //
 // An expert is trained on a task of the registry (env/registry.h) for one context value (the
-// walker's target speed, the humanoid's style index), or for a group of them that it takes as
+// walker's target speed, the humanoid's style label), or for a group of them that it takes as
 // a condition input: the value itself ("value": observation ++ [target_speed]) or a one-hot of
 // its position in the group ("one_hot": observation ++ [0, 1, 0, ...], for unordered styles).
 // Each group is crossed with initial policy log-std values and seeds, so the set is diverse in

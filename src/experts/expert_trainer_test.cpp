@@ -135,6 +135,8 @@ TEST(ExpertTrainer, TrainsTheHumanoidsStylesOnOneHotConditionsAndCollectsThem) {
   EXPECT_EQ(expert.agent->condition_dim(), 2);
   EXPECT_EQ(expert.agent->obs_dim(), 137);
   EXPECT_EQ(expert.agent->act_dim(), 56);
+  // No speed to grade it by: its context is a style label (the gait controllers are graded instead).
+  EXPECT_THROW(evaluate_expert(expert, ExpertEvalOptions{}), std::invalid_argument);
   // The walker's posture cost has no meaning for another body.
   auto walker_only = tiny(64);
   walker_only.posture_cost = 0.5;

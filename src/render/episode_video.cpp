@@ -28,9 +28,7 @@ class Replay {
       throw DataError(clip.caption + ": actions hold " + std::to_string(e.actions.size()) + " values, not " +
                       std::to_string(e.length()) + " steps x " + std::to_string(act_dim));
     has_observations_ = e.observations.size() == static_cast<size_t>(e.length() + 1) * obs_dim;
-    // A demonstrator knows what it does; the context is what the environment's reward would ask
-    // (the humanoid's gait demonstrations label styles the reward does not know).
-    if (!e.context.empty() && !clip.demonstrator) env_->set_context(e.context);
+    if (!e.context.empty()) env_->set_context(e.context);
     env_->reset(e.seed);
     if (clip.demonstrator) {
       demonstrator_ = clip.demonstrator(mujoco_->model());
