@@ -29,10 +29,11 @@ inline const std::string kPublishedWalkerDemos = "data/walker/demos.h5";
 inline const std::string kPublishedWalkerVae = "checkpoints/walker/vae/checkpoints/latest.pt";
 
 // The humanoid's artefacts (paper section 4.3), where scripts/reproduce/humanoid.sh makes them:
-// demonstrations of the training and evaluation controllers and the VAE run.
+// demonstrations of the training and evaluation controllers and the VAE run (its directory: a
+// clone has the committed weights.pt, a training machine its checkpoint too).
 inline const std::string kHumanoidTrainDemos = "data/humanoid/train.h5";
 inline const std::string kHumanoidEvalDemos = "data/humanoid/eval.h5";
-inline const std::string kHumanoidVae = "checkpoints/humanoid/vae/checkpoints/latest.pt";
+inline const std::string kHumanoidVae = "checkpoints/humanoid/vae";
 
 // The published demonstrations are not committed (docs/artefacts.md): when `demos` names them and
 // the checkout lacks them, they are made first from the committed experts by the command of
