@@ -183,6 +183,11 @@ styles=("$root/configs/humanoid_styles/train/old.json" "$root/configs/humanoid_s
   "$v" demos styles --demos "$tmp/h.h5" > "$tmp/stdout" 2>&1 && grep -q "of 2 held-out episodes named right" "$tmp/stdout" &&
   grep -q "train/chicken" "$tmp/stdout" || fail "demos collect --task humanoid --styles, demos styles: $(cat "$tmp/stdout")"
 expect_error "--styles is for --task humanoid" "$tmp/w.h5" -- demos collect --styles "${styles[0]}" --out "$tmp/w.h5"
+expect_error "--action-noise is for the humanoid's gait controllers" "$tmp/w.h5" -- demos collect --action-noise 0.1 \
+  --out "$tmp/w.h5"
+run_in "$tmp" demos collect --task humanoid --styles "${styles[0]}" --episodes-per-expert 1 --action-noise 0.1 \
+  --out "$tmp/h_dart.h5"
+grep -q "execution noise 0.1, clean labels" "$tmp/stdout" || fail "demos collect --action-noise: $(cat "$tmp/stdout")"
 
 # ---- the humanoid's later stages at tiny scale: VAE, GAIL by the humanoid preset, eval humanoid, transitions, bench
 run_in "$tmp" demos collect --task humanoid --styles "$root/configs/humanoid_styles/train/walk.json" --episodes-per-expert 2 \
