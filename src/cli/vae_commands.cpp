@@ -18,12 +18,14 @@
 #include "env/registry.h"
 #include "eval/embedding.h"
 #include "util/atomic_file.h"
+#include "util/checkpoint_file.h"
 #include "util/progress.h"
 #include "util/world.h"
 #include "vae/action_error.h"
 #include "vae/demo_dataset.h"
 #include "vae/imitation.h"
 #include "vae/latent_refinement.h"
+#include "vae/policy_refit.h"
 #include "vae/vae_trainer.h"
 
 namespace vaegail::cli {
@@ -278,6 +280,57 @@ void add_action_error(CLI::App& vae) {
   });
 }
 
+// ---- vae refit-policy -----------------------------------------------------------------
+struct RefitFlags : ModelFlags {
+  vae::PolicyRefitOptions refit;
+};
+
+bool same_directory(const std::string& a, const std::string& b) {
+  std::error_code ignored;
+  return fs::exists(a) && fs::exists(b) && fs::equivalent(a, b, ignored);
+}
+
+void run_refit_policy(const RefitFlags& f) {
+  const fs::path checkpoint_dir = fs::is_directory(f.checkpoint) ? fs::path(f.checkpoint) : fs::path(f.checkpoint).parent_path();
+  if (same_directory(checkpoint_dir.string(), f.refit.out_dir) ||
+      same_directory(checkpoint_dir.parent_path().string(), f.refit.out_dir))
+    throw std::invalid_argument("--out-dir " + f.refit.out_dir + " is the VAE's own run directory: refit into another");
+  auto l = load(f);
+  auto data = vae::make_demo_training_data(std::move(l.demos), l.model->config(), f.refit.seed);
+  Progress progress("encode", static_cast<std::int64_t>(data.train.size() + data.val.size()), "demos");
+  const auto train_mu = vae::encode(l.model, data.train).first;
+  progress.advance(data.train.size());
+  const auto val_mu = data.val.size() > 0 ? vae::encode(l.model, data.val).first : torch::Tensor();
+  progress.finish();
+  const auto train = vae::step_records(l.model, data.train, train_mu);
+  const auto val = data.val.size() > 0 ? vae::step_records(l.model, data.val, val_mu) : vae::StepRecords{};
+  std::printf("%lld training steps (%zu episodes), %lld validation steps (%zu episodes)\n",
+              static_cast<long long>(train.size()), data.split.train.size(), static_cast<long long>(val.size()),
+              data.split.val.size());
+  const auto r = vae::refit_policy(l.model, train, val, f.refit);
+  std::printf("action NLL per step (normalised units) / RMSE (action units), before -> after %d epochs:\n"
+              "  train %.3f / %.4f -> %.3f / %.4f\n  val   %.3f / %.4f -> %.3f / %.4f\n",
+              r.epochs_run, r.before_train.nll, r.before_train.rmse, r.train.nll, r.train.rmse, r.before_val.nll,
+              r.before_val.rmse, r.val.nll, r.val.rmse);
+  std::printf("weights: %s\n", (fs::path(f.refit.out_dir) / kWeightsFile).c_str());
+}
+
+void add_refit_policy(CLI::App& vae) {
+  auto f = std::make_shared<RefitFlags>();
+  CLI::App* c = vae.add_subcommand(
+      "refit-policy",
+      "train the VAE's action decoder further on single steps, encoder and state decoder frozen "
+      "(z: each demonstration's mu); rerun to resume");
+  add_model_flags(*c, *f);
+  c->add_option("--out-dir", f->refit.out_dir, "weights.pt (the whole VAE), metrics.csv, checkpoints/latest.pt")->required();
+  c->add_option("--epochs", f->refit.epochs, "passes over the training steps")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  c->add_option("--batch-size", f->refit.batch, "steps per Adam step")->check(CLI::Range(1, 1 << 24))->capture_default_str();
+  c->add_option("--lr", f->refit.learning_rate, "Adam learning rate, cosine-decayed to 1/100 of it")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--seed", f->refit.seed, "shuffling; and the validation split, as `vae train --seed`")->capture_default_str();
+  c->callback([f] { run_refit_policy(*f); });
+}
+
 // ---- vae imitate ----------------------------------------------------------------------
 struct ImitateFlags {
   ModelFlags model;
@@ -469,6 +522,7 @@ void add_vae_commands(CLI::App& app) {
   add_embed(*vae);
   add_knn(*vae);
   add_action_error(*vae);
+  add_refit_policy(*vae);
   add_imitate(*vae);
   add_interpolate(*vae);
   add_bench_vae(*app.get_subcommand("bench"));  // add_bench_commands runs first
