@@ -283,6 +283,7 @@ void add_action_error(CLI::App& vae) {
 // ---- vae refit-policy -----------------------------------------------------------------
 struct RefitFlags : ModelFlags {
   vae::PolicyRefitOptions refit;
+  double state_std_floor = -1;
 };
 
 bool same_directory(const std::string& a, const std::string& b) {
@@ -296,6 +297,7 @@ void run_refit_policy(const RefitFlags& f) {
       same_directory(checkpoint_dir.parent_path().string(), f.refit.out_dir))
     throw std::invalid_argument("--out-dir " + f.refit.out_dir + " is the VAE's own run directory: refit into another");
   auto l = load(f);
+  if (f.state_std_floor >= 0) l.model->set_policy_state_std_floor(f.state_std_floor);
   auto data = vae::make_demo_training_data(std::move(l.demos), l.model->config(), f.refit.seed);
   Progress progress("encode", static_cast<std::int64_t>(data.train.size() + data.val.size()), "demos");
   const auto train_mu = vae::encode(l.model, data.train).first;
@@ -328,6 +330,10 @@ void add_refit_policy(CLI::App& vae) {
   c->add_option("--lr", f->refit.learning_rate, "Adam learning rate, cosine-decayed to 1/100 of it")
       ->check(CLI::PositiveNumber)->capture_default_str();
   c->add_option("--seed", f->refit.seed, "shuffling; and the validation split, as `vae train --seed`")->capture_default_str();
+  c->add_option("--state-std-floor", f->state_std_floor,
+                "floor on the state std the action decoder's input is divided by (VaeConfig's "
+                "policy_state_std_floor; default: the checkpoint's)")
+      ->check(CLI::NonNegativeNumber);
   c->callback([f] { run_refit_policy(*f); });
 }
 

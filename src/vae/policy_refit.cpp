@@ -26,7 +26,7 @@ StepRecords step_records(TrajectoryVae& model, const TrajectoryDataset& data, co
   if (mu.dim() != 2 || mu.size(0) != M)
     throw std::invalid_argument("step_records: mu must be [" + std::to_string(M) + ", Z]");
   const int64_t T = data.actions.size(1), D = data.states.size(2), A = data.actions.size(2), Z = mu.size(1);
-  const auto x = model->normalize_states(data.states.narrow(1, 0, T)).reshape({M * T, D});
+  const auto x = model->policy_input(model->normalize_states(data.states.narrow(1, 0, T))).reshape({M * T, D});
   const auto a = model->normalize_actions(model->modelled_actions(data.states, data.actions)).reshape({M * T, A});
   const auto z = mu.to(x.scalar_type()).unsqueeze(1).expand({M, T, Z}).reshape({M * T, Z});
   if (!data.mask.defined()) return {x.contiguous(), z.contiguous(), a.contiguous()};

@@ -98,6 +98,16 @@ torch::Tensor TrajectoryVaeImpl::normalize_states(const torch::Tensor& states) c
   return (states - state_mean_) / state_std_;
 }
 
+torch::Tensor TrajectoryVaeImpl::policy_input(const torch::Tensor& x) const {
+  if (config_.policy_state_std_floor <= 0) return x;
+  return x * (state_std_ / state_std_.clamp_min(config_.policy_state_std_floor));
+}
+
+void TrajectoryVaeImpl::set_policy_state_std_floor(double floor) {
+  TORCH_CHECK(floor >= 0, "policy_state_std_floor must be >= 0");
+  config_.policy_state_std_floor = floor;
+}
+
 torch::Tensor TrajectoryVaeImpl::normalize_actions(const torch::Tensor& actions) const {
   return (actions - action_mean_) / action_std_;
 }
@@ -148,7 +158,7 @@ DecoderNll TrajectoryVaeImpl::decoder_nll(const Prepared& p, const torch::Tensor
   TORCH_CHECK(z.sizes() == torch::IntArrayRef({B, Z}), "TrajectoryVae: z must be [B, Z]");
   const auto x_t = p.x.narrow(1, 0, T);
   const auto z_t = z.unsqueeze(1).expand({B, T, Z});
-  const auto action_lp = action_decoder_->log_prob(x_t, z_t, p.a);  // [B, T]
+  const auto action_lp = action_decoder_->log_prob(policy_input(x_t), z_t, p.a);  // [B, T]
   const auto state_lp = state_decoder_
                             ->log_prob(x_t.reshape({B * T, D}), p.x.narrow(1, 1, T).reshape({B * T, D}),
                                        z_t.reshape({B * T, Z}))
@@ -186,7 +196,7 @@ VaeLoss TrajectoryVaeImpl::loss(const torch::Tensor& states, const torch::Tensor
 }
 
 torch::Tensor TrajectoryVaeImpl::action_mean(const torch::Tensor& state, const torch::Tensor& z) {
-  return action_decoder_->mean(normalize_states(state), z) * action_std_ + action_mean_ +
+  return action_decoder_->mean(policy_input(normalize_states(state)), z) * action_std_ + action_mean_ +
          action_offset(state);
 }
 

@@ -79,6 +79,11 @@ class TrajectoryVaeImpl : public torch::nn::Module {
                                   c10::optional<at::Generator> generator = c10::nullopt);
 
   torch::Tensor normalize_states(const torch::Tensor& states) const;
+  // What the action decoder reads of normalised states x [..., D]: x itself, or with
+  // config.policy_state_std_floor > 0 each component rescaled to that floor on its std.
+  torch::Tensor policy_input(const torch::Tensor& x) const;
+  // Sets config.policy_state_std_floor (the action decoder then wants retraining: vae refit-policy).
+  void set_policy_state_std_floor(double floor);
   torch::Tensor normalize_actions(const torch::Tensor& actions) const;
   // log|d normalised / d raw| per step: add to a normalised log-density to get the raw one.
   double state_log_jacobian() const;

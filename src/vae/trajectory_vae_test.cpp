@@ -180,6 +180,36 @@ TEST_F(TrajectoryVaeTest, NormalisationIsStoredInTheModule) {
                               vae->action_mean(states.select(1, 0), torch::zeros({4, 2}))));
 }
 
+TEST_F(TrajectoryVaeTest, ThePolicysInputStdIsFlooredAndNothingElseIs) {
+  TrajectoryVae vae(tiny_vae_config());
+  // Component 0 of the state nearly constant (std 1e-3), the others not.
+  auto [states, actions] = testing::toy_trajectories(4, 5, 4, 2, 6);
+  states.select(2, 0).mul_(1e-3);
+  vae->fit_normalization(states, actions);
+  const auto z = torch::randn({4, 5, 2});
+  const auto x = vae->normalize_states(states.narrow(1, 0, 5));
+  const auto plain = vae->action_mean(states.narrow(1, 0, 5), z);
+  const auto eps = torch::randn({4, 2});
+  const auto loss = vae->loss(states, actions, {}, eps);
+  vae->set_policy_state_std_floor(0.05);
+  // The policy sees component 0 divided by 0.05 instead of its own std: scaled by std / 0.05.
+  const auto std0 = vae->named_buffers()["state_std"][0].item<double>();
+  ASSERT_LT(std0, 0.05);
+  auto expected = x.clone();
+  expected.select(2, 0).mul_(std0 / 0.05);
+  EXPECT_TRUE(torch::allclose(vae->policy_input(x), expected));
+  const auto floored = vae->action_mean(states.narrow(1, 0, 5), z);
+  EXPECT_FALSE(torch::allclose(floored, plain));
+  EXPECT_TRUE(torch::allclose(floored, vae->action_decoder()->mean(expected, z) *
+                                           vae->named_buffers()["action_std"] + vae->named_buffers()["action_mean"]));
+  // The encoder and the state decoder are untouched: the loss changes in its action term only.
+  const auto after = vae->loss(states, actions, {}, eps);
+  EXPECT_FLOAT_EQ(after.state_nll.item<float>(), loss.state_nll.item<float>());
+  EXPECT_FLOAT_EQ(after.kl.item<float>(), loss.kl.item<float>());
+  EXPECT_NE(after.action_nll.item<float>(), loss.action_nll.item<float>());
+  EXPECT_EQ(VaeConfig::from_json(vae->config().to_json()).policy_state_std_floor, 0.05);
+}
+
 TEST_F(TrajectoryVaeTest, OverfitsTwoTrajectoriesAndSeparatesTheirEmbeddings) {
   TrajectoryVae vae(tiny_vae_config());
   auto [states, actions] = testing::toy_trajectories(2, 20, 4, 2, 9);

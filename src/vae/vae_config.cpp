@@ -12,7 +12,7 @@ namespace vaegail::vae {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(VaeConfig, name, state_dim, action_dim, lstm_hidden, latent_dim,
                                                 action_hidden, wavenet_channels, wavenet_layers, mixture_components,
                                                 position_embedding, action_relative_to_state,
-                                                action_std_depends_on_state, encoder_state_indices, learning_rate,
+                                                action_std_depends_on_state, policy_state_std_floor, encoder_state_indices, learning_rate,
                                                 batch_size, kl_weight, weight_decay, encoder_input_noise,
                                                 lr_decay_epochs)
 
@@ -74,6 +74,7 @@ void VaeConfig::validate() const {
   require(kl_weight >= 0, "kl_weight must be >= 0");
   require(weight_decay >= 0, "weight_decay must be >= 0");
   require(encoder_input_noise >= 0, "encoder_input_noise must be >= 0");
+  require(policy_state_std_floor >= 0, "policy_state_std_floor must be >= 0");
   require(lr_decay_epochs >= 0, "lr_decay_epochs must be >= 0");
   for (int k : encoder_state_indices)
     require(k >= 0 && k < state_dim, "encoder_state_indices must lie in [0, state_dim)");

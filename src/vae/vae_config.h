@@ -38,6 +38,13 @@ struct VaeConfig {
   // home state for every target): a large std there makes their error cheap, and the decoder
   // never learns to read z. A shared std weighs every step's error alike.
   bool action_std_depends_on_state = true;
+  // Not in the paper. 0, or a floor (raw units) on the state std the action decoder's input is
+  // divided by: it then sees (x - mean) / max(std, floor) while the encoder and the state
+  // decoder keep (x - mean) / std. A component nearly constant in the demonstrations (the
+  // humanoid's hand joints: std 1e-3) is otherwise blown up hundreds of times once a state
+  // leaves them a little, a rollout's or a noise-perturbed demonstration's, and saturates the
+  // decoder's tanh units (../shared/reference/held_torque_dagger floors its inputs' std at 0.05).
+  double policy_state_std_floor = 0.0;
   // Not in the paper, which encodes whole states. Empty, or the state components the encoder
   // reads (the decoders always see the whole state). The arm's grip position says where a
   // reach ends; its joint angles and velocities also carry each expert's idiosyncratic path,

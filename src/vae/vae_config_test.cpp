@@ -85,7 +85,7 @@ TEST(VaeConfigTest, EveryFieldIsReadAndCompared) {
   using nlohmann::json;
   const VaeConfig c = VaeConfig::walker();
   const json fields = json::parse(c.to_json());
-  EXPECT_EQ(fields.size(), 19u);
+  EXPECT_EQ(fields.size(), 20u);
   for (const auto& [key, value] : fields.items()) {
     // Another value of the field's type that the checks accept.
     const json other = value.is_boolean()  ? json(!value.get<bool>())
