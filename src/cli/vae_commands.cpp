@@ -284,7 +284,19 @@ void add_action_error(CLI::App& vae) {
 struct RefitFlags : ModelFlags {
   vae::PolicyRefitOptions refit;
   double state_std_floor = -1;
+  std::string z_from;
 };
+
+// Each episode's first context component (the style of a humanoid demonstration); a file without
+// contexts cannot lend z by label.
+std::vector<double> style_labels(const DemoSet& demos, const std::vector<int64_t>& episodes) {
+  std::vector<double> labels;
+  for (int64_t i : episodes) {
+    if (demos.episodes[i].context.empty()) throw std::invalid_argument(demos.path + ": episodes without a context");
+    labels.push_back(demos.episodes[i].context[0]);
+  }
+  return labels;
+}
 
 bool same_directory(const std::string& a, const std::string& b) {
   std::error_code ignored;
@@ -300,10 +312,20 @@ void run_refit_policy(const RefitFlags& f) {
   if (f.state_std_floor >= 0) l.model->set_policy_state_std_floor(f.state_std_floor);
   auto data = vae::make_demo_training_data(std::move(l.demos), l.model->config(), f.refit.seed);
   Progress progress("encode", static_cast<std::int64_t>(data.train.size() + data.val.size()), "demos");
-  const auto train_mu = vae::encode(l.model, data.train).first;
+  auto train_mu = vae::encode(l.model, data.train).first;
   progress.advance(data.train.size());
-  const auto val_mu = data.val.size() > 0 ? vae::encode(l.model, data.val).first : torch::Tensor();
+  auto val_mu = data.val.size() > 0 ? vae::encode(l.model, data.val).first : torch::Tensor();
   progress.finish();
+  if (!f.z_from.empty()) {
+    const auto clean = read_demos(f.z_from);
+    require_dims_match(l.model, clean);
+    const auto clean_mu = encode_with_progress(l.model, clean, all_episodes(clean));
+    const auto source = style_labels(clean, all_episodes(clean));
+    train_mu = vae::latents_by_label(clean_mu, source, style_labels(data.demos, data.split.train), f.refit.seed);
+    if (data.val.size() > 0)
+      val_mu = vae::latents_by_label(clean_mu, source, style_labels(data.demos, data.split.val), f.refit.seed + 1);
+    std::printf("z: each demonstration's borrowed from a demonstration of its context in %s\n", f.z_from.c_str());
+  }
   const auto train = vae::step_records(l.model, data.train, train_mu);
   const auto val = data.val.size() > 0 ? vae::step_records(l.model, data.val, val_mu) : vae::StepRecords{};
   std::printf("%lld training steps (%zu episodes), %lld validation steps (%zu episodes)\n",
@@ -334,6 +356,11 @@ void add_refit_policy(CLI::App& vae) {
                 "floor on the state std the action decoder's input is divided by (VaeConfig's "
                 "policy_state_std_floor; default: the checkpoint's)")
       ->check(CLI::NonNegativeNumber);
+  c->add_option("--z-from", f->z_from,
+                "demonstration file (the clean ones) whose encodings lend z: each refit demonstration takes "
+                "the mu of a random one of the same context, instead of its own (for noise-perturbed "
+                "demonstrations the encoder never saw)")
+      ->check(CLI::ExistingFile);
   c->callback([f] { run_refit_policy(*f); });
 }
 

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -32,6 +33,22 @@ StepRecords step_records(TrajectoryVae& model, const TrajectoryDataset& data, co
   if (!data.mask.defined()) return {x.contiguous(), z.contiguous(), a.contiguous()};
   const auto real = data.mask.to(torch::kBool).reshape({M * T}).nonzero().squeeze(1);
   return {x.index_select(0, real), z.index_select(0, real), a.index_select(0, real)};
+}
+
+torch::Tensor latents_by_label(const torch::Tensor& source_mu, const std::vector<double>& source_labels,
+                               const std::vector<double>& target_labels, std::uint64_t seed) {
+  if (source_mu.dim() != 2 || source_mu.size(0) != static_cast<int64_t>(source_labels.size()))
+    throw std::invalid_argument("latents_by_label: source_mu must be [" + std::to_string(source_labels.size()) + ", Z]");
+  std::map<double, std::vector<int64_t>> rows;
+  for (size_t j = 0; j < source_labels.size(); ++j) rows[source_labels[j]].push_back(static_cast<int64_t>(j));
+  Rng rng(seed);
+  std::vector<int64_t> chosen;
+  for (double label : target_labels) {
+    const auto it = rows.find(label);
+    if (it == rows.end()) throw std::invalid_argument(fmt::format("no source demonstration has the label {}", label));
+    chosen.push_back(it->second[rng.next() % it->second.size()]);
+  }
+  return source_mu.index_select(0, torch::tensor(chosen, torch::kLong));
 }
 
 PolicyFit policy_fit(TrajectoryVae& model, const StepRecords& records, int64_t batch) {

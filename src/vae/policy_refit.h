@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "vae/trajectory_vae.h"
 #include "vae/vae_trainer.h"
@@ -37,6 +38,16 @@ struct StepRecords {
 
 // Each trajectory's steps with z = mu [M, Z] of that trajectory.
 StepRecords step_records(TrajectoryVae& model, const TrajectoryDataset& data, const torch::Tensor& mu);
+
+// Each target row's z borrowed from a source row of the same label: for every target i, the mu
+// of a source row j with source_labels[j] == target_labels[i], drawn uniformly (seeded). Why:
+// noise-perturbed (DART) demonstrations lie off the paths the encoder was trained on, and it
+// does not tell their styles apart (humanoid: 25% nearest-centroid, chance 17%), so their own
+// mu says nothing and a policy fitted on them learns to ignore z; the mu of a clean
+// demonstration of the same style carries the style as one-shot imitation will present it.
+// Throws std::invalid_argument naming a target label no source row has.
+torch::Tensor latents_by_label(const torch::Tensor& source_mu, const std::vector<double>& source_labels,
+                               const std::vector<double>& target_labels, std::uint64_t seed);
 
 // Mean over the rows of -log pi(a | x, z) (summed over the action components) and the root
 // mean squared error of the mean action in raw action units (the normalised error times the

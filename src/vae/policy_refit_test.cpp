@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "vae/toy_trajectories.h"
 
@@ -86,6 +87,26 @@ TEST_F(PolicyRefitTest, RecordsAreTheRealStepsNormalisedWithTheirTrajectorysZ) {
   EXPECT_FALSE(masked.a.isnan().any().item<bool>());
   EXPECT_TRUE(torch::equal(masked.x[4], all.x[kSteps]));  // trajectory 1's first step follows trajectory 0's fourth
   EXPECT_THROW(step_records(f.vae, f.data, f.mu.narrow(0, 0, 3)), std::invalid_argument);
+}
+
+TEST_F(PolicyRefitTest, BorrowedLatentsComeFromSourceRowsOfTheSameLabel) {
+  // Source row j has mu (j, j): the label of the row it came from is readable off the value.
+  const auto source = torch::arange(6, torch::kFloat).unsqueeze(1).expand({6, 2}).contiguous();
+  const std::vector<double> source_labels = {0, 1, 2, 0, 1, 2};
+  const std::vector<double> target_labels = {2, 2, 0, 1, 0, 2, 1, 1};
+  const auto z = latents_by_label(source, source_labels, target_labels, 5);
+  ASSERT_EQ(z.size(0), 8);
+  std::set<int> drawn;
+  for (int i = 0; i < 8; ++i) {
+    const int j = static_cast<int>(z[i][0].item<float>());
+    EXPECT_EQ(source_labels[j], target_labels[i]);
+    EXPECT_TRUE(torch::equal(z[i], source[j]));
+    drawn.insert(j);
+  }
+  EXPECT_GT(drawn.size(), 3u);  // not always the first row of a label
+  EXPECT_TRUE(torch::equal(latents_by_label(source, source_labels, target_labels, 5), z));  // seeded
+  EXPECT_THROW(latents_by_label(source, source_labels, {3}, 5), std::invalid_argument);
+  EXPECT_THROW(latents_by_label(source, {0, 1}, target_labels, 5), std::invalid_argument);
 }
 
 TEST_F(PolicyRefitTest, FitIsTheDecodersNllAndTheRawRmseOfItsMean) {
