@@ -32,11 +32,19 @@
 #   figure5  Figure 5 left: a demonstration of every style beside its VAE and fine-tuned imitations (`render`), the
 #          videos results/humanoid/imitation_{train,eval}.mp4 (not committed), their stills in docs/figures/
 #   transitions  `eval transitions` between styles, into results/humanoid/transitions/
-#   dart   the DART ablation's demonstrations: data/humanoid/train_dart.h5, the training styles recorded under
-#          Gaussian noise (std 0.1) on every motor command, each step labelled with the clean controller's command
-#   vae_dart  the VAE on them (as `vae`), into checkpoints/humanoid/vae_dart, resumed by the same command
-#   imitation_dart  `eval humanoid` of the DART VAE's policy on the clean demonstrations, into
-#          results/humanoid/imitation_dart/
+#   refit  the VAE policy trained on (`vae refit-policy`): its action decoder on single shuffled steps of the clean
+#          demonstrations, encoder and state decoder frozen, its input std floored at 0.05, into
+#          checkpoints/humanoid/vae_refit: about 15 minutes; `eval humanoid` of it into results/humanoid/imitation_refit/
+#   dart   the DART demonstrations: data/humanoid/train_dart.h5, 1500 episodes of the training styles recorded under
+#          Gaussian noise (std 0.2) on every motor command, each step labelled with the clean controller's command:
+#          about 6 minutes
+#   vae_dart  the VAE policy refit as in `refit` on the DART demonstrations, each one's z borrowed from a clean
+#          demonstration of its style (the encoder cannot tell the noisy ones' styles apart), into
+#          checkpoints/humanoid/vae_dart (weights.pt committed: the GAIL run below rests on it): about 15 minutes
+#   gail_dart  diverse GAIL as `gail` with the DART-refit VAE policy as its base, into
+#          checkpoints/humanoid/diverse_gail_dart; GAIL_DART_ITERATIONS (default 2000) in total, resumed by the same command
+#   imitation_dart  `eval humanoid` and `eval transitions` of the DART-refit VAE policy and its fine-tuned one, into
+#          results/humanoid/imitation_dart/ and results/humanoid/transitions_dart/
 #   all    every stage above in order
 # The style files are committed with their tuned parameters, so `controllers demos` regenerates every published humanoid
 # figure; the demonstration files are not committed (they are remade in minutes). --dry-run prints the commands.
@@ -86,7 +94,6 @@ mpi="mpirun -np 2 --bind-to none"
 [ "$(id -u)" = 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 vae_run=checkpoints/humanoid/vae
 gail_run=checkpoints/humanoid/diverse_gail
-vae_dart_run=checkpoints/humanoid/vae_dart
 
 vae() {
   run $mpi $v vae train --demos data/humanoid/train.h5 --run-dir $vae_run --preset humanoid --epochs 60 \
@@ -155,25 +162,47 @@ figure5() {
   done
 }
 
-# The DART ablation (issue 50, item 3): the training styles' demonstrations recorded while Gaussian noise (std 0.1)
-# perturbs every motor command, each step labelled with the clean controller's command from the state the noise led
-# to (`demos collect --action-noise`); the VAE trained on them as on the clean set; its policy imitating the clean
-# demonstrations, beside the clean VAE's.
+# The VAE policy trained on past the joint VAE (`vae refit-policy`): the joint training gives the action decoder under
+# a thousand Adam steps, and without a floor on its input std the hand joints (std 1e-3 in the demonstrations) saturate
+# it as soon as a state leaves them. On the clean demonstrations (behaviour cloning: falls) and on DART ones.
+vae_refit_run=checkpoints/humanoid/vae_refit
+vae_dart_run=checkpoints/humanoid/vae_dart
+gail_dart_run=checkpoints/humanoid/diverse_gail_dart
+std_floor=0.05
+
+refit() {
+  run $v vae refit-policy --checkpoint $vae_run --demos data/humanoid/train.h5 --out-dir $vae_refit_run \
+    --state-std-floor $std_floor --epochs 30 --seed 0
+  run $v eval humanoid --demos data/humanoid/train.h5 --eval-demos data/humanoid/eval.h5 --vae $vae_refit_run \
+    --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_refit
+}
+
+# DART (issue 50, item 3): the training styles recorded while Gaussian noise (std 0.2) perturbs every motor command,
+# each step labelled with the clean controller's command from the state the noise led to (`demos collect
+# --action-noise`), so that the policy learns what to do off the demonstrator's path.
 dart() {
-  run $v demos collect --task humanoid --styles "${train_styles[@]}" --episodes-per-expert 250 --threads 2 \
-    --action-noise 0.1 --out data/humanoid/train_dart.h5 --force
+  run $v demos collect --task humanoid --styles "${train_styles[@]}" --episodes-per-expert 1500 --threads 2 \
+    --action-noise 0.2 --out data/humanoid/train_dart.h5 --force
   run_to results/humanoid/train_dart_demos.txt $v data info data/humanoid/train_dart.h5
 }
 
 vae_dart() {
   ensure data/humanoid/train_dart.h5 dart
-  run $mpi $v vae train --demos data/humanoid/train_dart.h5 --run-dir $vae_dart_run --preset humanoid --epochs 60 \
-    --batch-size 16 --lr 5e-4 --seed 0
+  ensure data/humanoid/train.h5 demos
+  run $v vae refit-policy --checkpoint $vae_run --demos data/humanoid/train_dart.h5 --out-dir $vae_dart_run \
+    --state-std-floor $std_floor --epochs 30 --seed 0 --z-from data/humanoid/train.h5
+}
+
+gail_dart() {
+  run $mpi $v gail train --demos data/humanoid/train.h5 --vae $vae_dart_run --run-dir $gail_dart_run --envs 16 \
+    --iterations "${GAIL_DART_ITERATIONS:-2000}" --seed 0
 }
 
 imitation_dart() {
   run $v eval humanoid --demos data/humanoid/train.h5 --eval-demos data/humanoid/eval.h5 --vae $vae_dart_run \
-    --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_dart
+    --gail $gail_dart_run --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_dart
+  run_to results/humanoid/transitions_dart.txt $v eval transitions --demos data/humanoid/train.h5 --vae $vae_dart_run \
+    --gail $gail_dart_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions_dart
 }
 
 transitions() {
@@ -181,5 +210,5 @@ transitions() {
     --gail $gail_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions
 }
 
-run_stages tune controllers demos video vae embedding gail course imitation figure5 transitions dart vae_dart \
-  imitation_dart
+run_stages tune controllers demos video vae embedding gail course imitation figure5 transitions refit dart vae_dart \
+  gail_dart imitation_dart
