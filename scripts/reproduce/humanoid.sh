@@ -201,6 +201,8 @@ gail_dart() {
 imitation_dart() {
   run $v eval humanoid --demos data/humanoid/train.h5 --eval-demos data/humanoid/eval.h5 --vae $vae_dart_run \
     --gail $gail_dart_run --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_dart
+  run $v plot curves --csv $gail_dart_run/metrics.csv --x iteration --y gail_reward,disc_policy_accuracy,disc_demo_accuracy \
+    --out results/humanoid/imitation_dart/discriminator.png
   run_to results/humanoid/transitions_dart.txt $v eval transitions --demos data/humanoid/train.h5 --vae $vae_dart_run \
     --gail $gail_dart_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions_dart
 }
