@@ -44,7 +44,8 @@
 #   gail_dart  diverse GAIL as `gail` with the DART-refit VAE policy as its base, into
 #          checkpoints/humanoid/diverse_gail_dart; GAIL_DART_ITERATIONS (default 2000) in total, resumed by the same command
 #   imitation_dart  `eval humanoid` and `eval transitions` of the DART-refit VAE policy and its fine-tuned one, into
-#          results/humanoid/imitation_dart/ and results/humanoid/transitions_dart/
+#          results/humanoid/imitation_dart/ and results/humanoid/transitions_dart/; their Figure 5 left as figure5's,
+#          docs/figures/humanoid_imitation_dart_{train,eval}.png
 #   all    every stage above in order
 # The style files are committed with their tuned parameters, so `controllers demos` regenerates every published humanoid
 # figure; the demonstration files are not committed (they are remade in minutes). --dry-run prints the commands.
@@ -152,13 +153,19 @@ imitation() {
 # beside its VAE and fine-tuned imitations, training styles and, one-shot, evaluation styles; the videos (not
 # committed) and a still of each.
 figure5() {
+  imitation_strips $vae_run $gail_run imitation
+}
+
+# imitation_strips VAE GAIL NAME: for the training and, one-shot, the evaluation styles, results/humanoid/NAME_SET.mp4
+# and its still docs/figures/humanoid_NAME_SET.png.
+imitation_strips() {
   local set
   for set in train eval; do
     local styles=("${train_styles[@]}")
     [ $set = eval ] && styles=("${eval_styles[@]}")
-    run $v render --demos data/humanoid/$set.h5 --episodes $(seq -s ' ' 0 $((${#styles[@]} - 1))) --vae $vae_run \
-      --gail $gail_run --styles "${styles[@]}" --azimuth 120 --elevation -15 --out results/humanoid/imitation_$set.mp4 \
-      --width 240 --height 180 --still docs/figures/humanoid_imitation_$set.png --still-frame 15 45 150
+    run $v render --demos data/humanoid/$set.h5 --episodes $(seq -s ' ' 0 $((${#styles[@]} - 1))) --vae "$1" \
+      --gail "$2" --styles "${styles[@]}" --azimuth 120 --elevation -15 --out results/humanoid/$3_$set.mp4 \
+      --width 240 --height 180 --still docs/figures/humanoid_$3_$set.png --still-frame 15 45 150
   done
 }
 
@@ -203,6 +210,7 @@ imitation_dart() {
     --gail $gail_dart_run --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_dart
   run $v plot curves --csv $gail_dart_run/metrics.csv --x iteration --y gail_reward,disc_policy_accuracy,disc_demo_accuracy \
     --out results/humanoid/imitation_dart/discriminator.png
+  imitation_strips $vae_dart_run $gail_dart_run imitation_dart
   run_to results/humanoid/transitions_dart.txt $v eval transitions --demos data/humanoid/train.h5 --vae $vae_dart_run \
     --gail $gail_dart_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions_dart
 }
