@@ -193,6 +193,12 @@ grep -q "execution noise 0.1, clean labels" "$tmp/stdout" || fail "demos collect
 run_in "$tmp" demos collect --task humanoid --styles "$root/configs/humanoid_styles/train/walk.json" --episodes-per-expert 2 \
   --threads 2 --out "$tmp/h_eval.h5"
 run_in "$tmp" vae train --demos "$tmp/h.h5" --run-dir "$tmp/h_vae" --preset humanoid --config "$tmp/tiny.json" --epochs 1
+run_in "$tmp" vae refit-policy --checkpoint "$tmp/h_vae" --demos "$tmp/h_dart.h5" --out-dir "$tmp/h_refit" --epochs 2 \
+  --batch-size 64 --state-std-floor 0.05 --z-from "$tmp/h.h5"
+grep -q "borrowed from a demonstration of its context" "$tmp/stdout" && [ -e "$tmp/h_refit/weights.pt" ] &&
+  [ "$(wc -l < "$tmp/h_refit/metrics.csv")" -eq 3 ] || fail "vae refit-policy: $(cat "$tmp/stdout")"
+expect_error "is the VAE's own run directory" "" -- vae refit-policy --checkpoint "$tmp/h_vae" --demos "$tmp/h.h5" \
+  --out-dir "$tmp/h_vae"
 run_in "$tmp" gail train --demos "$tmp/h.h5" --vae "$tmp/h_vae" --run-dir "$tmp/h_gail" --iterations 1 --envs 2 \
   --steps-per-env 16
 tr -d ' \n' < "$tmp/h_gail/config.json" > "$tmp/h_gail_config"
