@@ -14,6 +14,7 @@
 #include "util/checkpoint_file.h"
 #include "util/csv_log.h"
 #include "util/progress.h"
+#include "util/run_lock.h"
 #include "util/rng.h"
 
 namespace vaegail::vae {
@@ -118,6 +119,7 @@ PolicyRefitResult refit_policy(TrajectoryVae& model, const StepRecords& train, c
   if (options.epochs < 1 || options.batch < 1 || !(options.learning_rate > 0))
     throw std::invalid_argument("refit_policy: epochs, batch and learning rate must be positive");
   fs::create_directories(fs::path(options.out_dir) / "checkpoints");
+  const RunLock lock = lock_run_directory(options.out_dir);  // two refits into one directory would interleave
   const std::string latest = (fs::path(options.out_dir) / "checkpoints" / "latest.pt").string();
   const std::string metrics = (fs::path(options.out_dir) / "metrics.csv").string();
 

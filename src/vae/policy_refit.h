@@ -70,7 +70,8 @@ struct PolicyRefitOptions {
 // (seed, epoch)), evaluating on `val` (may be empty) after each epoch. After each epoch a
 // metrics row, out_dir/checkpoints/latest.pt (the whole model, readable by load_trained_vae,
 // with Adam's state and the epoch) and out_dir/weights.pt are written atomically; a call whose
-// out_dir holds latest.pt resumes from it. Returns the fit after the last epoch.
+// out_dir holds latest.pt resumes from it; out_dir's run lock (util/run_lock.h) is held meanwhile.
+// Returns the fit after the last epoch.
 struct PolicyRefitResult {
   int epochs_run = 0;  // in this call
   PolicyFit before_train, before_val, train, val;  // val: NaN without validation rows

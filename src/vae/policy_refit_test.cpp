@@ -7,6 +7,7 @@
 #include <fstream>
 #include <set>
 
+#include "util/run_lock.h"
 #include "vae/toy_trajectories.h"
 
 namespace vaegail::vae {
@@ -151,7 +152,7 @@ TEST_F(PolicyRefitTest, AResumedRefitEndsWhereAnUninterruptedOneDoes) {
   auto whole = make_fixture(4);
   const auto records = step_records(whole.vae, whole.data, whole.mu);
   refit_policy(whole.vae, records, records, options("whole", 6));
-  // kActionDim run killed during its last epoch: the checkpoint of epoch 5 (the one latest.pt replaced)
+  // A run killed during its last epoch: the checkpoint of epoch 5 (the one latest.pt replaced)
   // is its newest, and metrics.csv already holds the row of epoch 6.
   fs::copy(root_ / "whole", root_ / "cut", fs::copy_options::recursive);
   fs::rename(root_ / "cut" / "checkpoints" / "previous.pt", root_ / "cut" / "checkpoints" / "latest.pt");
@@ -164,7 +165,12 @@ TEST_F(PolicyRefitTest, AResumedRefitEndsWhereAnUninterruptedOneDoes) {
   int lines = 0;
   for (std::string line; std::getline(metrics, line);) ++lines;
   EXPECT_EQ(lines, 7);  // the header and epochs 1-6, epoch 6 once
-  // kActionDim finished run trains nothing further.
+  // A second writer on the same directory is refused while the first holds it.
+  {
+    const RunLock held = lock_run_directory((root_ / "cut").string());
+    EXPECT_THROW(refit_policy(resumed.vae, records, records, options("cut", 6)), std::runtime_error);
+  }
+  // A finished run trains nothing further.
   EXPECT_EQ(refit_policy(resumed.vae, records, records, options("cut", 6)).epochs_run, 0);
 }
 
