@@ -16,6 +16,7 @@
 #include "util/progress.h"
 #include "util/run_lock.h"
 #include "util/rng.h"
+#include "vae/gaussian.h"
 
 namespace vaegail::vae {
 
@@ -61,8 +62,9 @@ PolicyFit policy_fit(TrajectoryVae& model, const StepRecords& records, int64_t b
   for (int64_t b = 0; b < N; b += batch) {
     const int64_t n = std::min(batch, N - b);
     const auto x = records.x.narrow(0, b, n), z = records.z.narrow(0, b, n), a = records.a.narrow(0, b, n);
-    nll -= model->action_decoder()->log_prob(x, z, a).sum().item<double>();
-    squared += ((model->action_decoder()->mean(x, z) - a) * action_std).square().sum().item<double>();
+    const auto d = model->action_decoder()->forward(x, z);  // one pass for both figures
+    nll -= gaussian_log_prob(a, d.mean, d.log_std).sum().item<double>();
+    squared += ((d.mean - a) * action_std).square().sum().item<double>();
   }
   return {nll / static_cast<double>(N), std::sqrt(squared / static_cast<double>(N * records.a.size(1)))};
 }
