@@ -46,6 +46,12 @@
 #   imitation_dart  `eval humanoid` and `eval transitions` of the DART-refit VAE policy and its fine-tuned one, into
 #          results/humanoid/imitation_dart/ and results/humanoid/transitions_dart/; their Figure 5 left as figure5's,
 #          docs/figures/humanoid_imitation_dart_{train,eval}.png
+#   dagger  DAgger (Ross et al. 2011) from the DART-refit policy, with each style's own controller as the oracle:
+#          DAGGER_ITERATIONS (default 2) rounds of 600 episodes in which the current policy acts on a share of the
+#          control steps (0.5 in the first round, 1 after) and the controller labels every state
+#          (`demos collect --learner`), aggregated with the clean demonstrations (`data merge`), and the policy
+#          refit on the aggregate (15 epochs from the previous one) into checkpoints/humanoid/vae_dagger_N: about
+#          8 minutes a round; `eval humanoid` of the last into results/humanoid/imitation_dagger/
 #   all    every stage above in order
 # The style files are committed with their tuned parameters, so `controllers demos` regenerates every published humanoid
 # figure; the demonstration files are not committed (they are remade in minutes). --dry-run prints the commands.
@@ -215,10 +221,28 @@ imitation_dart() {
     --gail $gail_dart_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions_dart
 }
 
+dagger() {
+  ensure data/humanoid/train.h5 demos
+  ensure $vae_dart_run/weights.pt vae_dart
+  local learner=$vae_dart_run/weights.pt aggregate=data/humanoid/train.h5 share=0.5 round
+  for ((round = 1; round <= ${DAGGER_ITERATIONS:-2}; round++)); do
+    run $v demos collect --task humanoid --styles "${train_styles[@]}" --episodes-per-expert 600 --threads 2 \
+      --seed $((100 + round)) --learner $learner --learner-share $share --z-from data/humanoid/train.h5 \
+      --out data/humanoid/dagger_$round.h5 --force
+    run $v data merge $aggregate data/humanoid/dagger_$round.h5 --out data/humanoid/dagger_aggregate_$round.h5 --force
+    aggregate=data/humanoid/dagger_aggregate_$round.h5
+    run $v vae refit-policy --checkpoint $learner --demos $aggregate --out-dir checkpoints/humanoid/vae_dagger_$round \
+      --epochs 15 --seed 0 --z-from data/humanoid/train.h5
+    learner=checkpoints/humanoid/vae_dagger_$round/weights.pt share=1
+  done
+  run $v eval humanoid --demos data/humanoid/train.h5 --eval-demos data/humanoid/eval.h5 --vae $learner \
+    --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_dagger
+}
+
 transitions() {
   run_to results/humanoid/transitions.txt $v eval transitions --demos data/humanoid/train.h5 --vae $vae_run \
     --gail $gail_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions
 }
 
 run_stages tune controllers demos video vae embedding gail course imitation figure5 transitions refit dart vae_dart \
-  gail_dart imitation_dart
+  gail_dart imitation_dart dagger

@@ -197,6 +197,19 @@ run_in "$tmp" vae refit-policy --checkpoint "$tmp/h_vae" --demos "$tmp/h_dart.h5
   --batch-size 64 --state-std-floor 0.05 --z-from "$tmp/h.h5"
 grep -q "borrowed from a demonstration of its context" "$tmp/stdout" && [ -e "$tmp/h_refit/weights.pt" ] &&
   [ "$(wc -l < "$tmp/h_refit/metrics.csv")" -eq 3 ] || fail "vae refit-policy: $(cat "$tmp/stdout")"
+# DAgger: the refit policy acts on a share of the steps, the controller labels; the aggregate by data merge.
+run_in "$tmp" demos collect --task humanoid --styles "${styles[@]}" --episodes-per-expert 2 --learner "$tmp/h_refit" \
+  --learner-share 0.5 --z-from "$tmp/h.h5" --out "$tmp/h_dagger.h5"
+grep -q "DAgger: the learner acts on 0.5 of the steps" "$tmp/stdout" || fail "demos collect --learner: $(cat "$tmp/stdout")"
+expect_error "--learner and --z-from go together" "$tmp/w.h5" -- demos collect --task humanoid --styles "${styles[0]}" \
+  --learner "$tmp/h_refit" --out "$tmp/w.h5"
+expect_error "h_dart.h5: no demonstration by train/chicken to lend the learner its z" "$tmp/w.h5" -- demos collect --task humanoid --styles "${styles[@]}" \
+  --learner "$tmp/h_refit" --z-from "$tmp/h_dart.h5" --out "$tmp/w.h5"
+run_in "$tmp" data merge "$tmp/h.h5" "$tmp/h_dagger.h5" --out "$tmp/h_aggregate.h5"
+grep -q "6 episodes, .* from 2 files" "$tmp/stdout" || fail "data merge: $(cat "$tmp/stdout")"
+expect_error "cannot merge with $tmp/h.h5: task 'walker', not 'humanoid'" "$tmp/w.h5" -- data merge "$tmp/h.h5" \
+  "$tmp/one.h5" --out "$tmp/w.h5"
+expect_error "exists (pass --force" "" -- data merge "$tmp/h.h5" --out "$tmp/h_aggregate.h5"
 expect_error "is the VAE's own run directory" "" -- vae refit-policy --checkpoint "$tmp/h_vae" --demos "$tmp/h.h5" \
   --out-dir "$tmp/h_vae"
 run_in "$tmp" gail train --demos "$tmp/h.h5" --vae "$tmp/h_vae" --run-dir "$tmp/h_gail" --iterations 1 --envs 2 \

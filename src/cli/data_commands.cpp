@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <iterator>
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
@@ -10,6 +11,7 @@
 #include "data/demo_stats.h"
 #include "data/foreign_demos.h"
 #include "util/histogram.h"
+#include "util/run_lock.h"
 
 namespace vaegail::cli {
 namespace {
@@ -107,6 +109,43 @@ void run_import(const ImportOptions& o) {
               set.header.body_mjcf.empty() ? "" : " (body stored in the file)");
 }
 
+struct MergeOptions {
+  std::vector<std::string> inputs;
+  std::string out;
+  bool force = false;
+};
+
+// The first header component in which `b` differs from `a`, or empty: files merge only when
+// recorded on one task with the same components.
+std::string header_difference(const DemoHeader& a, const DemoHeader& b) {
+  if (a.env_id != b.env_id) return "task '" + b.env_id + "', not '" + a.env_id + "'";
+  if (a.control_timestep != b.control_timestep) return "another control timestep";
+  if (a.observation_names != b.observation_names) return "other observation components";
+  if (a.action_names != b.action_names) return "other action components";
+  if (a.feature_names != b.feature_names) return "other features";
+  if (a.context_names != b.context_names) return "other context components";
+  if (a.body_mjcf != b.body_mjcf) return "another body";
+  return "";
+}
+
+// DAgger's aggregate, or any union of demonstration sets of one task: the episodes of each file in
+// the order given, headers checked to agree.
+void run_merge(const MergeOptions& o) {
+  const RunLock lock = lock_output_file(o.out);
+  if (std::filesystem::exists(o.out) && !o.force) throw std::runtime_error(o.out + ": exists (pass --force to replace it)");
+  DemoSet merged = read_demos(o.inputs.front());
+  for (size_t k = 1; k < o.inputs.size(); ++k) {
+    DemoSet more = read_demos(o.inputs[k]);
+    const std::string difference = header_difference(merged.header, more.header);
+    if (!difference.empty())
+      throw std::invalid_argument(o.inputs[k] + ": cannot merge with " + o.inputs.front() + ": " + difference);
+    std::move(more.episodes.begin(), more.episodes.end(), std::back_inserter(merged.episodes));
+  }
+  write_demo_set(merged, o.out);
+  std::printf("wrote %s: %zu episodes, %lld steps, from %zu files\n", o.out.c_str(), merged.episodes.size(),
+              static_cast<long long>(total_steps(merged)), o.inputs.size());
+}
+
 struct ExportOptions {
   std::string file, minari_dir, dataset_id;
   bool force = false;
@@ -146,12 +185,20 @@ void add_import_export(CLI::App& data) {
   exp->add_option("--dataset-id", out->dataset_id, "Minari's dataset_id (default: vaegail/FILE_STEM-v0)");
   exp->add_flag("--force", out->force, "replace an existing directory");
   exp->callback([out] { run_export(*out); });
+
+  auto merge = std::make_shared<MergeOptions>();
+  CLI::App* m = data.add_subcommand(
+      "merge", "concatenate demonstration files of one task into one (DAgger's aggregate), episodes in the order given");
+  m->add_option("inputs", merge->inputs, "demonstration files (.h5), their headers alike")->required()->check(CLI::ExistingFile);
+  m->add_option("--out", merge->out, "demonstration file to write (.h5)")->required();
+  m->add_flag("--force", merge->force, "replace an existing output file");
+  m->callback([merge] { run_merge(*merge); });
 }
 
 }  // namespace
 
 void add_data_commands(CLI::App& app) {
-  CLI::App* data = app.add_subcommand("data", "inspect, import and export demonstration files");
+  CLI::App* data = app.add_subcommand("data", "inspect, import, export and merge demonstration files");
   data->require_subcommand(1);
   auto options = std::make_shared<InfoOptions>();
   CLI::App* info = data->add_subcommand("info", "episodes, lengths, counts per context and feature statistics");

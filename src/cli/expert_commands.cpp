@@ -26,6 +26,9 @@
 #include "util/json_file.h"
 #include "util/progress.h"
 #include "util/run_lock.h"
+#include "vae/imitation.h"
+#include "vae/policy_refit.h"
+#include "vae/trained_vae.h"
 
 namespace vaegail::cli {
 
@@ -314,7 +317,52 @@ struct CollectFlags {
   bool force = false;
   std::vector<std::string> styles;  // humanoid: gait controllers' style files
   double action_noise = 0;          // with them: DART's execution noise
+  std::string learner;              // and DAgger's learner: a VAE run whose policy acts on a share of steps
+  double learner_share = 0.5;
+  std::string z_from;               // the demonstrations whose mu give the learner each style's z
 };
+
+// DAgger's learner: the VAE policy's mean action, held over the step as in every imitation; in
+// episode i of style k its z is the mu of a random demonstration in `z_from` by the same
+// demonstrator (matched by expert id, not by context index, so that the two files may list the
+// styles in another order), as `vae refit-policy --z-from` lends it.
+std::function<std::function<void(const float*, float*)>(int, int)> vae_learner(
+    const std::string& run, const std::string& z_from, const std::vector<GaitDemonstrator>& styles, int episodes,
+    std::uint64_t seed) {
+  auto model = vae::load_trained_vae(run);
+  model->eval();
+  const DemoSet clean = read_demos(z_from);
+  const auto& c = model->config();
+  if (clean.header.obs_dim() != c.state_dim || clean.header.act_dim() != c.action_dim)
+    throw std::invalid_argument(z_from + ": observations/actions do not match the VAE of " + run);
+  std::vector<int64_t> source;
+  std::vector<double> source_styles;
+  for (size_t j = 0; j < clean.episodes.size(); ++j)
+    for (size_t k = 0; k < styles.size(); ++k)
+      if (clean.episodes[j].expert_id == styles[k].label) {
+        source.push_back(static_cast<int64_t>(j));
+        source_styles.push_back(static_cast<double>(k));
+      }
+  for (size_t k = 0; k < styles.size(); ++k)
+    if (std::find(source_styles.begin(), source_styles.end(), static_cast<double>(k)) == source_styles.end())
+      throw std::invalid_argument(z_from + ": no demonstration by " + styles[k].label + " to lend the learner its z");
+  std::vector<double> episode_styles(episodes);
+  for (int i = 0; i < episodes; ++i) episode_styles[i] = i % static_cast<int>(styles.size());
+  Progress progress("encode", static_cast<std::int64_t>(source.size()), "demos");
+  const torch::Tensor mu = vae::encode_episodes(model, clean, source, nullptr, &progress);
+  progress.finish();
+  const torch::Tensor z = vae::latents_by_label(mu, source_styles, episode_styles, seed);
+  return [model, z](int episode, int) -> std::function<void(const float*, float*)> {
+    const torch::Tensor row = z[episode].unsqueeze(0);
+    return [model, row](const float* observation, float* action) mutable {
+      torch::NoGradGuard no_grad;
+      const int64_t state_dim = model->config().state_dim;
+      const auto x = torch::from_blob(const_cast<float*>(observation), {1, state_dim}, torch::kFloat32);
+      const auto a = model->action_mean(x, row).to(torch::kFloat32).contiguous();
+      std::copy_n(a.data_ptr<float>(), a.numel(), action);
+    };
+  };
+}
 
 // The humanoid's gait controllers: --episodes in all (default 250), episode i in style i mod K.
 void collect_gait_demos(const CollectFlags& f) {
@@ -325,6 +373,10 @@ void collect_gait_demos(const CollectFlags& f) {
   o.seed = f.collect.seed;
   o.threads = f.collect.threads;
   o.action_noise = f.action_noise;
+  if (!f.learner.empty()) {
+    o.learner_for = vae_learner(f.learner, f.z_from, styles, o.episodes, o.seed);
+    o.learner_share = f.learner_share;
+  }
   DemoHeader header;
   Progress progress("collect", o.episodes, "episodes");
   const std::vector<Episode> episodes = record_gait_demos(styles, o, &header, &progress);
@@ -332,8 +384,9 @@ void collect_gait_demos(const CollectFlags& f) {
   for (const auto& e : episodes) writer.append(e);
   writer.commit();
   progress.finish();
-  std::printf("wrote %s: %zu gait styles, %d episodes%s\n", f.out.c_str(), styles.size(), o.episodes,
-              o.action_noise > 0 ? fmt::format(" (execution noise {}, clean labels)", o.action_noise).c_str() : "");
+  std::printf("wrote %s: %zu gait styles, %d episodes%s%s\n", f.out.c_str(), styles.size(), o.episodes,
+              o.action_noise > 0 ? fmt::format(" (execution noise {}, clean labels)", o.action_noise).c_str() : "",
+              o.learner_for ? fmt::format(" (DAgger: the learner acts on {} of the steps, clean labels)", o.learner_share).c_str() : "");
 }
 
 void run_collect(CollectFlags f) {
@@ -341,6 +394,9 @@ void run_collect(CollectFlags f) {
   if (fs::exists(f.out) && !f.force) throw std::runtime_error(f.out + ": exists (pass --force to replace it)");
   if (f.action_noise > 0 && f.styles.empty())
     throw std::invalid_argument("--action-noise is for the humanoid's gait controllers (--styles)");
+  if (!f.learner.empty() && f.styles.empty())
+    throw std::invalid_argument("--learner is for the humanoid's gait controllers (--styles)");
+  if (f.learner.empty() != f.z_from.empty()) throw std::invalid_argument("--learner and --z-from go together");
   if (!f.styles.empty()) {
     if (f.task != "humanoid") throw std::invalid_argument("--styles is for --task humanoid (gait controllers)");
     if (fs::path(f.out).has_parent_path()) fs::create_directories(fs::path(f.out).parent_path());
@@ -499,6 +555,12 @@ void add_expert_commands(CLI::App& app) {
       ->check(CLI::ExistingFile);
   collect->add_option("--action-noise", c->action_noise, "humanoid --styles: std of Gaussian noise on every motor command, one draw per control step, while each step records the clean controller's mean command from its start state (DART; 0: clean demonstrations)")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  collect->add_option("--learner", c->learner, "humanoid --styles: DAgger's learner, a VAE run (directory or weights.pt) whose mean-action policy acts instead of the controller on --learner-share of the control steps, its action held over the step; each step records the clean controller's mean command from its start state")
+      ->check(CLI::ExistingPath);
+  collect->add_option("--learner-share", c->learner_share, "with --learner: the probability that the learner acts in a control step (DAgger's 1 - beta)")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  collect->add_option("--z-from", c->z_from, "with --learner: demonstrations of the same styles (matched by expert id) whose mu, one drawn per episode, is the learner's z")
+      ->check(CLI::ExistingFile);
   collect->add_option("--threads", c->collect.threads, "episodes stepped at once (one core each)")->check(CLI::Range(1, 64))->capture_default_str();
   collect->add_flag("--force", c->force, "replace an existing output file");
   collect->callback([c] { run_collect(*c); });

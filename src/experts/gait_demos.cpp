@@ -61,6 +61,8 @@ std::vector<Episode> record_gait_demos(const std::vector<GaitDemonstrator>& styl
     GaitEpisodeOptions episode;
     episode.seed = e.seed;
     episode.action_noise = options.action_noise;
+    if (options.learner_for) episode.learner = options.learner_for(i, k);
+    episode.learner_share = options.learner_share;
     run_gait_episode(*env, styles[k].parameters, episode,
                      [&](const HumanoidEnv& at, const float* mean_action, const StepOutcome* outcome) {
                        if (outcome) {  // after a control step (else: the reset)

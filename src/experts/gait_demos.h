@@ -10,10 +10,12 @@
 // "style", else its folder and name), so that later stages name the styles (`demos styles`).
 // Clean demonstrations: no pushes, no noise (the paper's controllers' demonstrations). With
 // action_noise, the noise-perturbed set of DART instead (gait_episode.h): the states the noisy
-// execution visits, each with the clean controller's action from it.
+// execution visits, each with the clean controller's action from it. With a learner, DAgger's
+// aggregation set: the states a mixture of learner and controller visits, labelled the same way.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,6 +41,10 @@ struct GaitDemoOptions {
   std::uint64_t seed = 0;
   int threads = 1;     // episodes recorded at once
   double action_noise = 0;  // GaitEpisodeOptions::action_noise
+  // DAgger: the learner that acts in episode i of style k (GaitEpisodeOptions::learner), made once
+  // per episode in the thread that records it; it acts with probability learner_share a step.
+  std::function<std::function<void(const float*, float*)>(int episode, int style)> learner_for;
+  double learner_share = 0;
 };
 
 // The episodes in order, and the header of the humanoid's files (context names "style").

@@ -13,6 +13,7 @@ namespace vaegail {
 namespace {
 constexpr std::uint64_t kGaitPushStream = 1;   // the pushes' stream of the episode's seed
 constexpr std::uint64_t kGaitNoiseStream = 2;  // and the execution noise's
+constexpr std::uint64_t kGaitLearnerStream = 3;  // and the learner's turns'
 constexpr double kGaitTransientSeconds = 1.0;  // the start left out of the means
 
 struct PelvisPush {
@@ -73,6 +74,21 @@ class NoisyControl : public PhysicsStepController {
   Rng rng_;
 };
 
+// A learner's held action in place of the controller's ctrl; the controller (with its pushes)
+// still runs first at every physics step, so that its state machine and filters follow the walk.
+class LearnerControl : public PhysicsStepController {
+ public:
+  LearnerControl(PhysicsStepController& beneath, const float* action) : beneath_(beneath), action_(action) {}
+  void control(const mjModel* m, mjData* d) override {
+    beneath_.control(m, d);
+    for (int a = 0; a < m->nu; ++a) d->ctrl[a] = action_[a];
+  }
+
+ private:
+  PhysicsStepController& beneath_;
+  const float* action_;
+};
+
 // Footholds' mean step length and width (in the frame of the heading at each landing) and
 // cadence, over the steps that land after the transient.
 void foothold_statistics(const std::vector<Foothold>& footholds, const GaitParameters& p, GaitEpisodeResult& r) {
@@ -110,23 +126,32 @@ GaitEpisodeResult run_gait_episode(HumanoidEnv& env, const GaitParameters& p, co
   const double* com = env.data()->subtree_com + 3 * skeleton.root;
   const Vec2 com_start = {com[0], com[1]};
   std::vector<float> action(env.act_dim()), label(env.act_dim());
-  const bool noisy = o.action_noise > 0;
+  const bool noisy = o.action_noise > 0, dagger = o.learner && o.learner_share > 0, labelled = noisy || dagger;
   NoisyControl noisy_gait(pushed, env.act_dim(), o.action_noise, derive_seed(o.seed, kGaitNoiseStream));
+  PhysicsStepController& executed = noisy ? static_cast<PhysicsStepController&>(noisy_gait) : pushed;
+  std::vector<float> observation(env.obs_dim()), learner_action(env.act_dim());
+  LearnerControl learner(executed, learner_action.data());
+  Rng learner_turns(derive_seed(o.seed, kGaitLearnerStream));
   GaitEpisodeResult r;
   int measured = 0;
   if (observer) observer(env, nullptr, nullptr);
   for (int t = 0; t < steps && !r.fallen; ++t) {
-    if (noisy) {
+    if (labelled) {
       GaitController clean = gait;  // its state machine and filters as they are now
       env.lookahead_controlled(clean, label.data());
-      noisy_gait.draw();
     }
-    const StepOutcome outcome = env.step_controlled(noisy ? static_cast<PhysicsStepController&>(noisy_gait) : pushed,
+    if (noisy) noisy_gait.draw();
+    const bool learner_acts = dagger && learner_turns.uniform(0, 1) < o.learner_share;
+    if (learner_acts) {
+      env.observe(observation.data());
+      o.learner(observation.data(), learner_action.data());
+    }
+    const StepOutcome outcome = env.step_controlled(learner_acts ? static_cast<PhysicsStepController&>(learner) : executed,
                                                     action.data());
     episode.rewards.push_back(outcome.reward);
     episode.features.resize(episode.features.size() + n_features);
     env.features(episode.features.data() + episode.features.size() - n_features);
-    if (observer) observer(env, noisy ? label.data() : action.data(), &outcome);
+    if (observer) observer(env, labelled ? label.data() : action.data(), &outcome);
     ++r.control_steps;
     r.fallen = env.fallen();
     const double time = env.data()->time;

@@ -25,6 +25,13 @@ struct GaitEpisodeOptions {
   // al. 2017), which takes the demonstrator off its own path so that its demonstrations show how
   // it comes back. The label leaves pushes out. 0: none.
   double action_noise = 0;
+  // DAgger (Ross et al. 2011): at each control step, with probability learner_share (drawn from
+  // the seed's own stream), `learner` acts instead: its action from the step's first observation,
+  // held over the step as a policy's is, while the controller still runs beneath it so that its
+  // state machine follows the walk. Each step then records the clean label as under action_noise:
+  // the controller's answer to the states a learner visits. Empty or 0: the controller acts.
+  std::function<void(const float* observation, float* action)> learner;
+  double learner_share = 0;
 };
 
 // Means are over the control steps after the first second (the start's transient left out)
@@ -51,7 +58,7 @@ struct GaitEpisodeResult {
 
 // Called once after the reset (mean_action and outcome null), then after each control step with
 // the step's mean action (float[56]) and outcome: what a recorder of the episode needs. Under
-// action_noise the action is the clean label instead: the mean ctrl the controller, noise-free,
+// action_noise or a learner the action is the clean label instead: the mean ctrl the controller, noise-free,
 // would apply over the step from the state the step started in (MujocoEnv::lookahead_controlled).
 using GaitStepObserver =
     std::function<void(const HumanoidEnv& env, const float* mean_action, const StepOutcome* outcome)>;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -101,6 +102,54 @@ TEST(GaitEpisode, UnderActionNoiseTheRecordIsTheCleanControllersActionAlongTheNo
   EXPECT_LT(clean_gap, 0.05);
   for (const auto& action : noisy.actions)
     for (float a : action) ASSERT_LE(std::abs(a), 1.0f);  // labels are in the action box
+}
+
+// DAgger's record: on the learner's turns the motors get its action, held over the step and
+// chosen from the step's first observation; every step records the clean controller's answer.
+TEST(GaitEpisode, WithALearnerItActsOnItsShareOfStepsAndTheRecordIsTheControllersLabel) {
+  HumanoidEnv env;
+  static constexpr float kLearnerCommand = 0.05f;  // no gait controller holds every motor at one value
+  struct Record {
+    std::vector<std::vector<float>> labels, observations, asked;  // asked: what the learner was shown
+    std::vector<bool> learner_acted;  // every physics step's ctrl was the learner's
+  };
+  const auto walk = [&](double share) {
+    Record r;
+    GaitEpisodeOptions o;
+    o.seed = 31;
+    o.steps = 20;
+    o.learner_share = share;
+    o.learner = [&](const float* observation, float* action) {
+      r.asked.emplace_back(observation, observation + env.obs_dim());
+      std::fill(action, action + env.act_dim(), kLearnerCommand);
+    };
+    run_gait_episode(env, GaitParameters{}, o, [&](const HumanoidEnv& at, const float* label, const StepOutcome*) {
+      r.observations.push_back(at.observation());
+      if (!label) return;
+      r.labels.emplace_back(label, label + at.act_dim());
+      const double* ctrl = at.data()->ctrl;
+      r.learner_acted.push_back(std::all_of(ctrl, ctrl + at.act_dim(), [](double c) { return c == kLearnerCommand; }));
+    });
+    return r;
+  };
+  const Record alone = walk(0), always = walk(1), half = walk(0.5), again = walk(0.5);
+  EXPECT_TRUE(alone.asked.empty());
+  EXPECT_EQ(std::count(alone.learner_acted.begin(), alone.learner_acted.end(), true), 0);
+  ASSERT_GE(always.labels.size(), 5u);  // it falls soon, but not at once
+  EXPECT_EQ(std::count(always.learner_acted.begin(), always.learner_acted.end(), false), 0);
+  ASSERT_EQ(always.asked.size(), always.labels.size());
+  for (size_t t = 0; t < always.asked.size(); ++t) EXPECT_EQ(always.asked[t], always.observations[t]) << t;
+  EXPECT_EQ(always.labels[0], alone.labels[0]);  // the same start: the controller's own first action
+  EXPECT_NE(always.labels[3], alone.labels[3]);  // then labels of the states the learner led to
+  for (const auto& label : always.labels)
+    EXPECT_GT(*std::max_element(label.begin(), label.end()) - *std::min_element(label.begin(), label.end()), 0.1f);
+  ASSERT_EQ(half.labels.size(), 20u);
+  const auto turns = std::count(half.learner_acted.begin(), half.learner_acted.end(), true);
+  EXPECT_EQ(turns, static_cast<long>(half.asked.size()));
+  EXPECT_GE(turns, 4);  // Binomial(20, 0.5): 4 to 16 with probability 0.997
+  EXPECT_LE(turns, 16);
+  EXPECT_EQ(half.learner_acted, again.learner_acted);  // the turns are drawn from the seed
+  EXPECT_EQ(half.labels, again.labels);
 }
 
 TEST(GaitEval, AStyleIsWalkedFromEachStartWithAndWithoutPushesAndItsMeansReported) {
