@@ -47,11 +47,12 @@
 #          results/humanoid/imitation_dart/ and results/humanoid/transitions_dart/; their Figure 5 left as figure5's,
 #          docs/figures/humanoid_imitation_dart_{train,eval}.png
 #   dagger  DAgger (Ross et al. 2011) from the DART-refit policy, with each style's own controller as the oracle:
-#          DAGGER_ITERATIONS (default 2) rounds of 600 episodes in which the current policy acts on a share of the
-#          control steps (0.5 in the first round, 1 after) and the controller labels every state
-#          (`demos collect --learner`), aggregated with the clean demonstrations (`data merge`), and the policy
-#          refit on the aggregate (15 epochs from the previous one) into checkpoints/humanoid/vae_dagger_N: about
-#          8 minutes a round; `eval humanoid` of the last into results/humanoid/imitation_dagger/
+#          DAGGER_ITERATIONS (default 4) rounds of 600 episodes in which the current policy acts on a share of the
+#          control steps (0.5, 0.75, 0.9, then 1: the reference experiment's beta) and the controller labels every
+#          state (`demos collect --learner`), aggregated with the clean demonstrations (`data merge`), the policy
+#          refit on the aggregate (15 epochs on from the previous round's) into checkpoints/humanoid/vae_dagger_N
+#          and evaluated (`eval humanoid`, results/humanoid/imitation_dagger/round_N/): about 8 minutes a round;
+#          a round's files are kept, so the same command resumes
 #   all    every stage above in order
 # The style files are committed with their tuned parameters, so `controllers demos` regenerates every published humanoid
 # figure; the demonstration files are not committed (they are remade in minutes). --dry-run prints the commands.
@@ -224,19 +225,22 @@ imitation_dart() {
 dagger() {
   ensure data/humanoid/train.h5 demos
   ensure $vae_dart_run/weights.pt vae_dart
-  local learner=$vae_dart_run/weights.pt aggregate=data/humanoid/train.h5 share=0.5 round
-  for ((round = 1; round <= ${DAGGER_ITERATIONS:-2}; round++)); do
-    run $v demos collect --task humanoid --styles "${train_styles[@]}" --episodes-per-expert 600 --threads 2 \
-      --seed $((100 + round)) --learner $learner --learner-share $share --z-from data/humanoid/train.h5 \
-      --out data/humanoid/dagger_$round.h5 --force
-    run $v data merge $aggregate data/humanoid/dagger_$round.h5 --out data/humanoid/dagger_aggregate_$round.h5 --force
+  local learner=$vae_dart_run/weights.pt aggregate=data/humanoid/train.h5 shares=(0.5 0.75 0.9) round share
+  for ((round = 1; round <= ${DAGGER_ITERATIONS:-4}; round++)); do
+    share=${shares[round - 1]:-1}  # the learner's share of the steps: beta = 0.5, 0.25, 0.1, then 0
+    [ -e data/humanoid/dagger_$round.h5 ] ||
+      run $v demos collect --task humanoid --styles "${train_styles[@]}" --episodes-per-expert 600 --threads 2 \
+        --seed $((100 + round)) --learner $learner --learner-share $share --z-from data/humanoid/train.h5 \
+        --out data/humanoid/dagger_$round.h5
+    [ -e data/humanoid/dagger_aggregate_$round.h5 ] ||
+      run $v data merge $aggregate data/humanoid/dagger_$round.h5 --out data/humanoid/dagger_aggregate_$round.h5
     aggregate=data/humanoid/dagger_aggregate_$round.h5
     run $v vae refit-policy --checkpoint $learner --demos $aggregate --out-dir checkpoints/humanoid/vae_dagger_$round \
       --epochs 15 --seed 0 --z-from data/humanoid/train.h5
-    learner=checkpoints/humanoid/vae_dagger_$round/weights.pt share=1
+    learner=checkpoints/humanoid/vae_dagger_$round/weights.pt
+    run $v eval humanoid --demos data/humanoid/train.h5 --eval-demos data/humanoid/eval.h5 --vae $learner \
+      --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_dagger/round_$round
   done
-  run $v eval humanoid --demos data/humanoid/train.h5 --eval-demos data/humanoid/eval.h5 --vae $learner \
-    --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_dagger
 }
 
 transitions() {

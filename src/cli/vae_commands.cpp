@@ -311,12 +311,14 @@ void run_refit_policy(const RefitFlags& f) {
   auto l = load(f);
   if (f.state_std_floor >= 0) l.model->set_policy_state_std_floor(f.state_std_floor);
   auto data = vae::make_demo_training_data(std::move(l.demos), l.model->config(), f.refit.seed);
-  Progress progress("encode", static_cast<std::int64_t>(data.train.size() + data.val.size()), "demos");
-  auto train_mu = vae::encode(l.model, data.train).first;
-  progress.advance(data.train.size());
-  auto val_mu = data.val.size() > 0 ? vae::encode(l.model, data.val).first : torch::Tensor();
-  progress.finish();
-  if (!f.z_from.empty()) {
+  torch::Tensor train_mu, val_mu;
+  if (f.z_from.empty()) {  // each demonstration's own mu
+    Progress progress("encode", static_cast<std::int64_t>(data.train.size() + data.val.size()), "demos");
+    train_mu = vae::encode(l.model, data.train).first;
+    progress.advance(data.train.size());
+    if (data.val.size() > 0) val_mu = vae::encode(l.model, data.val).first;
+    progress.finish();
+  } else {
     const auto clean = read_demos(f.z_from);
     require_dims_match(l.model, clean);
     const auto clean_mu = encode_with_progress(l.model, clean, all_episodes(clean));
