@@ -47,12 +47,17 @@
 #          results/humanoid/imitation_dart/ and results/humanoid/transitions_dart/; their Figure 5 left as figure5's,
 #          docs/figures/humanoid_imitation_dart_{train,eval}.png
 #   dagger  DAgger (Ross et al. 2011) from the DART-refit policy, with each style's own controller as the oracle:
-#          DAGGER_ITERATIONS (default 4) rounds of 600 episodes in which the current policy acts on a share of the
+#          DAGGER_ITERATIONS (default 2) rounds of 600 episodes in which the current policy acts on a share of the
 #          control steps (0.5, 0.75, 0.9, then 1: the reference experiment's beta) and the controller labels every
 #          state (`demos collect --learner`), aggregated with the clean demonstrations (`data merge`), the policy
 #          refit on the aggregate (15 epochs on from the previous round's) into checkpoints/humanoid/vae_dagger_N
 #          and evaluated (`eval humanoid`, results/humanoid/imitation_dagger/round_N/): about 8 minutes a round;
 #          a round's files are kept, so the same command resumes
+#   gail_dagger  diverse GAIL as `gail` with the last DAgger round's policy as its base, into
+#          checkpoints/humanoid/diverse_gail_dagger; GAIL_DAGGER_ITERATIONS (default 2000) in total, resumed by the same
+#          command
+#   imitation_dagger  as imitation_dart for the last DAgger round's policy and its fine-tuned one: results/humanoid/
+#          imitation_dagger/, transitions_dagger/, docs/figures/humanoid_imitation_dagger_{train,eval}.png
 #   all    every stage above in order
 # The style files are committed with their tuned parameters, so `controllers demos` regenerates every published humanoid
 # figure; the demonstration files are not committed (they are remade in minutes). --dry-run prints the commands.
@@ -212,21 +217,28 @@ gail_dart() {
     --iterations "${GAIL_DART_ITERATIONS:-2000}" --seed 0
 }
 
+# imitation_of VAE GAIL NAME: `eval humanoid` of the VAE policy and its fine-tuned one into results/humanoid/imitation_NAME/,
+# the GAIL run's discriminator curves, their Figure 5 left (imitation_strips, NAME imitation_NAME) and `eval transitions`
+# into results/humanoid/transitions_NAME/.
+imitation_of() {
+  run $v eval humanoid --demos data/humanoid/train.h5 --eval-demos data/humanoid/eval.h5 --vae "$1" \
+    --gail "$2" --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_$3
+  run $v plot curves --csv "$2"/metrics.csv --x iteration --y gail_reward,disc_policy_accuracy,disc_demo_accuracy \
+    --out results/humanoid/imitation_$3/discriminator.png
+  imitation_strips "$1" "$2" imitation_$3
+  run_to results/humanoid/transitions_$3.txt $v eval transitions --demos data/humanoid/train.h5 --vae "$1" \
+    --gail "$2" --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions_$3
+}
+
 imitation_dart() {
-  run $v eval humanoid --demos data/humanoid/train.h5 --eval-demos data/humanoid/eval.h5 --vae $vae_dart_run \
-    --gail $gail_dart_run --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_dart
-  run $v plot curves --csv $gail_dart_run/metrics.csv --x iteration --y gail_reward,disc_policy_accuracy,disc_demo_accuracy \
-    --out results/humanoid/imitation_dart/discriminator.png
-  imitation_strips $vae_dart_run $gail_dart_run imitation_dart
-  run_to results/humanoid/transitions_dart.txt $v eval transitions --demos data/humanoid/train.h5 --vae $vae_dart_run \
-    --gail $gail_dart_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions_dart
+  imitation_of $vae_dart_run $gail_dart_run dart
 }
 
 dagger() {
   ensure data/humanoid/train.h5 demos
   ensure $vae_dart_run/weights.pt vae_dart
   local learner=$vae_dart_run/weights.pt aggregate=data/humanoid/train.h5 shares=(0.5 0.75 0.9) round share
-  for ((round = 1; round <= ${DAGGER_ITERATIONS:-4}; round++)); do
+  for ((round = 1; round <= ${DAGGER_ITERATIONS:-2}; round++)); do
     share=${shares[round - 1]:-1}  # the learner's share of the steps: beta = 0.5, 0.25, 0.1, then 0
     [ -e data/humanoid/dagger_$round.h5 ] ||
       run $v demos collect --task humanoid --styles "${train_styles[@]}" --episodes-per-expert 600 --threads 2 \
@@ -243,10 +255,24 @@ dagger() {
   done
 }
 
+# Diverse GAIL on the last DAgger round's policy (its weights.pt committed: the run rests on it).
+vae_dagger_run=checkpoints/humanoid/vae_dagger_${DAGGER_ITERATIONS:-2}
+gail_dagger_run=checkpoints/humanoid/diverse_gail_dagger
+
+gail_dagger() {
+  ensure $vae_dagger_run/weights.pt dagger
+  run $mpi $v gail train --demos data/humanoid/train.h5 --vae $vae_dagger_run --run-dir $gail_dagger_run --envs 16 \
+    --iterations "${GAIL_DAGGER_ITERATIONS:-2000}" --seed 0
+}
+
+imitation_dagger() {
+  imitation_of $vae_dagger_run $gail_dagger_run dagger
+}
+
 transitions() {
   run_to results/humanoid/transitions.txt $v eval transitions --demos data/humanoid/train.h5 --vae $vae_run \
     --gail $gail_run --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions
 }
 
 run_stages tune controllers demos video vae embedding gail course imitation figure5 transitions refit dart vae_dart \
-  gail_dart imitation_dart dagger
+  gail_dart imitation_dart dagger gail_dagger imitation_dagger
