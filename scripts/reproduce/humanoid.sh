@@ -218,13 +218,14 @@ gail_dart() {
 }
 
 # imitation_of VAE GAIL NAME: `eval humanoid` of the VAE policy and its fine-tuned one into results/humanoid/imitation_NAME/,
-# the GAIL run's discriminator curves, their Figure 5 left (imitation_strips, NAME imitation_NAME) and `eval transitions`
+# the GAIL run's discriminator curves and episode length, their Figure 5 left (imitation_strips, NAME imitation_NAME) and `eval transitions`
 # into results/humanoid/transitions_NAME/.
 imitation_of() {
   run $v eval humanoid --demos data/humanoid/train.h5 --eval-demos data/humanoid/eval.h5 --vae "$1" \
     --gail "$2" --episodes-per-style 10 --threads 2 --out-dir results/humanoid/imitation_$3
   run $v plot curves --csv "$2"/metrics.csv --x iteration --y gail_reward,disc_policy_accuracy,disc_demo_accuracy \
     --out results/humanoid/imitation_$3/discriminator.png
+  run $v plot curves --csv "$2"/metrics.csv --x iteration --y episode_length --out results/humanoid/imitation_$3/episode_length.png
   imitation_strips "$1" "$2" imitation_$3
   run_to results/humanoid/transitions_$3.txt $v eval transitions --demos data/humanoid/train.h5 --vae "$1" \
     --gail "$2" --pairs 200 --per-expert 11 --out-dir results/humanoid/transitions_$3
