@@ -331,10 +331,7 @@ std::function<std::function<void(const float*, float*)>(int, int)> vae_learner(
     std::uint64_t seed) {
   auto model = vae::load_trained_vae(run);
   model->eval();
-  const DemoSet clean = read_demos(z_from);
-  const auto& c = model->config();
-  if (clean.header.obs_dim() != c.state_dim || clean.header.act_dim() != c.action_dim)
-    throw std::invalid_argument(z_from + ": observations/actions do not match the VAE of " + run);
+  const DemoSet clean = read_demos(z_from);  // its dimensions are checked against the VAE's by the encoding below
   std::vector<int64_t> source;
   std::vector<double> source_styles;
   for (size_t j = 0; j < clean.episodes.size(); ++j)
